@@ -1,0 +1,45 @@
+#pragma once
+
+// Where things are in a COLMAP workspace:
+//   W/images/                    the input images (names in the model are relative to it)
+//   W/sparse/0/ or W/sparse/     the sparse model (binary or text)
+//   W/dense/N/                   image_undistorter output: images/, sparse/, stereo/depth_maps,
+//                                stereo/normal_maps, and after fusion/meshing fused.ply, meshed-*.ply
+//   W/lutex/                     everything lutex writes, unless told otherwise
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lutex {
+
+struct DenseWorkspace {
+  std::filesystem::path root;  // W/dense/N (or a folder with the same layout)
+  std::filesystem::path images_dir;
+  std::filesystem::path sparse_dir;
+  std::filesystem::path depth_maps_dir;
+  std::filesystem::path normal_maps_dir;
+  std::filesystem::path fused_ply;              // empty when absent
+  std::vector<std::filesystem::path> meshes;    // meshed-*.ply present, sorted
+
+  // stereo/depth_maps/NAME.TYPE.bin with TYPE "geometric" or "photometric".
+  std::filesystem::path DepthMapPath(const std::string& image_name, const std::string& type) const;
+  std::filesystem::path NormalMapPath(const std::string& image_name, const std::string& type) const;
+};
+
+struct Workspace {
+  std::filesystem::path root;
+  std::filesystem::path images_dir;
+  std::filesystem::path sparse_dir;
+  std::vector<DenseWorkspace> dense;  // dense/0, dense/1, ... present, in order
+
+  std::filesystem::path OutputDir() const { return root / "lutex"; }
+};
+
+// Throws std::runtime_error naming `root` when it is not a folder or has no sparse model.
+Workspace FindWorkspace(const std::filesystem::path& root);
+
+// Throws std::runtime_error naming `root` when it lacks images/ or sparse/.
+DenseWorkspace FindDenseWorkspace(const std::filesystem::path& root);
+
+}  // namespace lutex

@@ -1,0 +1,31 @@
+#pragma once
+
+// What the ray caster sees through each pixel of one image.
+
+#include <opencv2/core.hpp>
+
+namespace lutex {
+
+struct GeometryMaps {
+  // Planar depth z in the camera frame (scene units), CV_32F; NaN where the ray hits nothing.
+  cv::Mat depth;
+  // Unit geometric normal in the camera frame, facing the camera (n . ray < 0), CV_32FC3 as (x, y, z);
+  // NaN where nothing is hit. Empty when not requested.
+  cv::Mat normal;
+  // Index of the hit face in the mesh, CV_32S; -1 where nothing is hit. Empty when not requested.
+  cv::Mat face_id;
+  // Barycentric coordinates (b1, b2) of the hit in its face, CV_32FC2: the point is
+  // (1 - b1 - b2) * v0 + b1 * v1 + b2 * v2. Empty when not requested.
+  cv::Mat barycentrics;
+};
+
+struct GeometryMapsOptions {
+  // Which optional maps to produce (depth is always produced).
+  bool normal = true;
+  bool face_id = true;
+  bool barycentrics = false;
+  // Threads over tiles of the image; <= 0 means all cores. Results do not depend on it.
+  int num_threads = 0;
+};
+
+}  // namespace lutex

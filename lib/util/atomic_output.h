@@ -1,0 +1,32 @@
+#pragma once
+
+// Outputs are never left half-written: write to a temporary name beside the destination, then Commit()
+// renames it into place (atomic on POSIX within one file system). An uncommitted temporary is removed
+// by the destructor, so an exception during writing leaves no partial file and the old file intact.
+
+#include <filesystem>
+
+namespace lutex {
+
+class AtomicOutputFile {
+ public:
+  // Creates the parent folder of `destination` if needed.
+  explicit AtomicOutputFile(std::filesystem::path destination);
+  ~AtomicOutputFile();
+  AtomicOutputFile(const AtomicOutputFile&) = delete;
+  AtomicOutputFile& operator=(const AtomicOutputFile&) = delete;
+
+  // Where to write now.
+  const std::filesystem::path& temporary_path() const { return temporary_path_; }
+  const std::filesystem::path& destination() const { return destination_; }
+
+  // Renames the temporary file to the destination; throws if it does not exist.
+  void Commit();
+
+ private:
+  std::filesystem::path destination_;
+  std::filesystem::path temporary_path_;
+  bool committed_ = false;
+};
+
+}  // namespace lutex

@@ -1,0 +1,189 @@
+#include "lib/raycast/raycast_scene.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "lib/geometry/look_at.h"
+#include "lib/geometry/mesh_primitives.h"
+
+namespace lutex {
+namespace {
+
+// The plane through `point` with unit `normal`, as a 200 m square of two triangles.
+Mesh PlaneMesh(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d u = normal.unitOrthogonal() * 100.0;
+  const Eigen::Vector3d v = normal.cross(u);
+  Mesh mesh;
+  mesh.vertices = {point - u - v, point + u - v, point + u + v, point - u + v};
+  mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+  return mesh;
+}
+
+Camera DistortedCamera() {
+  Camera camera;
+  camera.camera_id = 1;
+  camera.model_id = CameraModelId::kOpenCV;
+  camera.width = 160;
+  camera.height = 120;
+  camera.params = {100, 102, 81, 59, -0.12, 0.02, 0.001, -0.001};
+  return camera;
+}
+
+// Every pixel of a tilted plane has the depth and normal of the analytic ray-plane intersection.
+TEST(RaycastScene, TiltedPlaneHasExactDepthAndNormal) {
+  const Eigen::Vector3d plane_point(0.3, -0.2, 4.0);
+  const Eigen::Vector3d plane_normal = Eigen::Vector3d(0.2, -0.3, -1.0).normalized();
+  const RaycastScene scene(PlaneMesh(plane_point, plane_normal));
+  const Rigid3d cam_from_world = CamFromWorldLookingAt(Eigen::Vector3d(0.1, 0.2, 0.0), Eigen::Vector3d(0.1, 0.05, 1.0),
+                                        Eigen::Vector3d(0, 1, 0));
+  const Camera camera = DistortedCamera();
+  const CameraRays rays(camera);
+  GeometryMapsOptions options;
+  options.barycentrics = true;
+  const GeometryMaps maps = scene.Render(rays, cam_from_world, options);
+
+  const Eigen::Matrix3d rotation = cam_from_world.rotation.toRotationMatrix();
+  const Eigen::Vector3d normal_in_cam = rotation * plane_normal;
+  const Eigen::Vector3d point_in_cam = cam_from_world * plane_point;
+  for (int row = 0; row < 120; ++row) {
+    for (int col = 0; col < 160; ++col) {
+      const Eigen::Vector3d ray = camera.CamFromImg(Eigen::Vector2d(col + 0.5, row + 0.5));  // z = 1
+      const double expected_z = normal_in_cam.dot(point_in_cam) / normal_in_cam.dot(ray);
+      ASSERT_NEAR(maps.depth.at<float>(row, col), expected_z, 2e-5 * expected_z) << col << "," << row;
+      const cv::Vec3f n = maps.normal.at<cv::Vec3f>(row, col);
+      const Eigen::Vector3d facing = normal_in_cam.dot(ray) < 0 ? normal_in_cam : -normal_in_cam;
+      ASSERT_NEAR(n[0], facing.x(), 1e-5);
+      ASSERT_NEAR(n[1], facing.y(), 1e-5);
+      ASSERT_NEAR(n[2], facing.z(), 1e-5);
+      ASSERT_GE(maps.face_id.at<int>(row, col), 0);
+    }
+  }
+}
+
+// The face id and barycentrics reproduce the hit point: (1-b1-b2) v0 + b1 v1 + b2 v2 = z * ray.
+TEST(RaycastScene, BarycentricsReproduceTheHitPoint) {
+  const Mesh mesh = MakeHeightFieldMesh([](double x, double y) { return 0.3 * std::sin(x) * std::cos(y); },
+                                        -5, 5, -5, 5, 40, 40);
+  const RaycastScene scene(mesh);
+  const Rigid3d cam_from_world = CamFromWorldLookingAt(Eigen::Vector3d(0, 0, 3), Eigen::Vector3d(0.1, 0, -1), Eigen::Vector3d(0, 1, 0));
+  const Camera camera = Camera::Pinhole(1, 64, 48, 40, 40);
+  GeometryMapsOptions options;
+  options.barycentrics = true;
+  const GeometryMaps maps = scene.Render(CameraRays(camera), cam_from_world, options);
+  const Rigid3d world_from_cam = cam_from_world.Inverse();
+  for (int row = 0; row < 48; row += 3) {
+    for (int col = 0; col < 64; col += 3) {
+      const int face_id = maps.face_id.at<int>(row, col);
+      ASSERT_GE(face_id, 0);
+      const Mesh::Face& face = mesh.faces[face_id];
+      const cv::Vec2f b = maps.barycentrics.at<cv::Vec2f>(row, col);
+      const Eigen::Vector3d from_barycentrics = (1.0 - b[0] - b[1]) * mesh.vertices[face[0]] +
+                                                b[0] * mesh.vertices[face[1]] + b[1] * mesh.vertices[face[2]];
+      const Eigen::Vector3d from_depth =
+          world_from_cam * (maps.depth.at<float>(row, col) * camera.CamFromImg(Eigen::Vector2d(col + 0.5, row + 0.5)));
+      EXPECT_LT((from_barycentrics - from_depth).norm(), 1e-4);
+    }
+  }
+}
+
+// A unit cube 2 m in front of the camera: its front face is at depth 2 with normal -z; pixels outside
+// its image are NaN / -1.
+TEST(RaycastScene, UnitCubeFrontFace) {
+  const RaycastScene scene(MakeBoxMesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1)));
+  const Rigid3d cam_from_world(Eigen::Quaterniond::Identity(), Eigen::Vector3d(-0.5, -0.5, 2.0));
+  const Camera camera = Camera::Pinhole(1, 100, 100, 100, 100);  // the face spans pixels 25..75
+  const GeometryMaps maps = scene.Render(CameraRays(camera), cam_from_world);
+  for (int row = 0; row < 100; ++row) {
+    for (int col = 0; col < 100; ++col) {
+      const bool inside = col + 0.5 > 25 && col + 0.5 < 75 && row + 0.5 > 25 && row + 0.5 < 75;
+      const float z = maps.depth.at<float>(row, col);
+      if (inside) {
+        ASSERT_NEAR(z, 2.0f, 1e-6f);
+        ASSERT_NEAR(maps.normal.at<cv::Vec3f>(row, col)[2], -1.0f, 1e-6f);
+      } else {
+        ASSERT_TRUE(std::isnan(z)) << col << "," << row;
+        ASSERT_EQ(maps.face_id.at<int>(row, col), -1);
+      }
+    }
+  }
+}
+
+// A tessellated sphere agrees with the analytic sphere to within its tessellation error: a facet of a
+// 128 x 256 latitude-longitude sphere lies within R (1 - cos(pi/256) cos(pi/256)) = 1.5e-4 R of the sphere,
+// and a ray away from the silhouette meets it within a few times that.
+TEST(RaycastScene, SphereDepthAndNormalMatchAnalyticSphere) {
+  const double radius = 1.0;
+  const RaycastScene scene(MakeSphereMesh(Eigen::Vector3d::Zero(), radius, 128, 256));
+  const Eigen::Vector3d centre(0, 0, -3);
+  const Rigid3d cam_from_world(Eigen::Quaterniond::Identity(), -centre);
+  const Camera camera = Camera::Pinhole(1, 80, 80, 80, 80);
+  const GeometryMaps maps = scene.Render(CameraRays(camera), cam_from_world);
+  int hits = 0;
+  for (int row = 0; row < 80; ++row) {
+    for (int col = 0; col < 80; ++col) {
+      const Eigen::Vector3d d = camera.CamFromImg(Eigen::Vector2d(col + 0.5, row + 0.5)).normalized();
+      // |c + t d|^2 = R^2 with c the camera centre relative to the sphere centre.
+      const double b = centre.dot(d), c = centre.squaredNorm() - radius * radius;
+      const double discriminant = b * b - c;
+      const float z = maps.depth.at<float>(row, col);
+      if (discriminant < 0.01) continue;  // skip the silhouette, where facets and sphere disagree most
+      ++hits;
+      const double t = -b - std::sqrt(discriminant);
+      EXPECT_NEAR(z, t * d.z(), 1e-3 * radius);
+      const Eigen::Vector3d expected_normal = (centre + t * d).normalized();
+      const cv::Vec3f n = maps.normal.at<cv::Vec3f>(row, col);
+      EXPECT_GT(expected_normal.dot(Eigen::Vector3d(n[0], n[1], n[2])), std::cos(1.5 * M_PI / 180.0));
+    }
+  }
+  EXPECT_GT(hits, 1000);
+}
+
+// Same maps, bit for bit, at any thread count.
+TEST(RaycastScene, ResultsDoNotDependOnTheThreadCount) {
+  const Mesh mesh = MakeHeightFieldMesh([](double x, double y) { return std::sin(3 * x) * std::cos(2 * y); },
+                                        -3, 3, -3, 3, 60, 60);
+  const RaycastScene scene(mesh);
+  const Rigid3d cam_from_world = CamFromWorldLookingAt(Eigen::Vector3d(0.2, 0, 4), Eigen::Vector3d(0, 0.1, -1), Eigen::Vector3d(0, 1, 0));
+  const CameraRays rays(DistortedCamera(), 3);
+  GeometryMapsOptions one, many;
+  one.num_threads = 1;
+  many.num_threads = 2;
+  const GeometryMaps a = scene.Render(rays, cam_from_world, one);
+  const GeometryMaps b = scene.Render(rays, cam_from_world, many);
+  EXPECT_EQ(cv::norm(a.face_id, b.face_id, cv::NORM_INF), 0.0);
+  cv::Mat depth_a = a.depth.clone(), depth_b = b.depth.clone();
+  cv::patchNaNs(depth_a, -1);
+  cv::patchNaNs(depth_b, -1);
+  EXPECT_EQ(cv::norm(depth_a, depth_b, cv::NORM_INF), 0.0);
+}
+
+// Large (georeferenced) coordinates keep millimetre depth precision thanks to the local origin.
+TEST(RaycastScene, GeoreferencedCoordinatesKeepPrecision) {
+  const Eigen::Vector3d offset(512345.0, 6012345.0, -1500.0);
+  const RaycastScene scene(PlaneMesh(offset + Eigen::Vector3d(0, 0, -2.0), Eigen::Vector3d::UnitZ()));
+  const Rigid3d cam_from_world = CamFromWorldLookingAt(offset, Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(0, 1, 0));
+  const GeometryMaps maps = scene.Render(CameraRays(Camera::Pinhole(1, 40, 30, 30, 30)), cam_from_world);
+  EXPECT_NEAR(maps.depth.at<float>(15, 20), 2.0f, 1e-3f);
+}
+
+TEST(RaycastScene, SingleRayIntersection) {
+  const RaycastScene scene(MakeBoxMesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1)));
+  const RayHit hit = scene.Intersect(Eigen::Vector3d(0.5, 0.5, 5), Eigen::Vector3d(0, 0, -1));
+  ASSERT_TRUE(hit.hit);
+  EXPECT_NEAR(hit.distance, 4.0, 1e-6);
+  EXPECT_NEAR(hit.normal_in_world.z(), 1.0, 1e-9);
+  EXPECT_FALSE(scene.Intersect(Eigen::Vector3d(5, 5, 5), Eigen::Vector3d(0, 0, 1)).hit);
+}
+
+TEST(RaycastScene, EmptyMeshAndBadPoseAreErrors) {
+  const Mesh empty;
+  EXPECT_THROW(RaycastScene{empty}, std::runtime_error);
+  const RaycastScene scene(MakeBoxMesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1)));
+  Rigid3d pose;
+  pose.translation.x() = std::nan("");
+  EXPECT_THROW(scene.Render(CameraRays(Camera::Pinhole(1, 8, 8, 8, 8)), pose), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lutex
