@@ -21,6 +21,7 @@
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/raycast/raycast_scene.h"
+#include "lib/raycast/embree_ray_packet.h"
 #include "lib/util/parallel_for.h"
 
 namespace {
@@ -75,18 +76,7 @@ double BareEmbreeSeconds(const lutex::Mesh& mesh, const lutex::Camera& camera, c
         valid[lane] = col < width && row < height ? -1 : 0;
         const Eigen::Vector3f direction =
             world_from_cam * Eigen::Vector3f((static_cast<float>(col) + 0.5f - cx) / fx, (static_cast<float>(row) + 0.5f - cy) / fy, 1.0f).normalized();
-        packet.ray.org_x[lane] = centre.x();
-        packet.ray.org_y[lane] = centre.y();
-        packet.ray.org_z[lane] = centre.z();
-        packet.ray.dir_x[lane] = direction.x();
-        packet.ray.dir_y[lane] = direction.y();
-        packet.ray.dir_z[lane] = direction.z();
-        packet.ray.tnear[lane] = 0.0f;
-        packet.ray.tfar[lane] = std::numeric_limits<float>::infinity();
-        packet.ray.mask[lane] = 0xFFFFFFFFu;
-        packet.ray.time[lane] = 0.0f;
-        packet.ray.flags[lane] = 0;
-        packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+        lutex::SetPacketRay(lane, centre, direction, &packet);
       }
       rtcIntersect16(valid, scene, &context, &packet);
       for (int lane = 0; lane < 16; ++lane) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lib/raycast/embree_ray_packet.h"
 #include "lib/util/parallel_for.h"
 
 namespace lutex {
@@ -170,18 +171,7 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
         valid[lane] = inside && direction_in_cam.allFinite() ? -1 : 0;
         const Eigen::Vector3f direction =
             valid[lane] ? Eigen::Vector3f(world_from_cam_rotation * direction_in_cam) : Eigen::Vector3f(0, 0, 1);
-        packet.ray.org_x[lane] = centre.x();
-        packet.ray.org_y[lane] = centre.y();
-        packet.ray.org_z[lane] = centre.z();
-        packet.ray.dir_x[lane] = direction.x();
-        packet.ray.dir_y[lane] = direction.y();
-        packet.ray.dir_z[lane] = direction.z();
-        packet.ray.tnear[lane] = 0.0f;
-        packet.ray.tfar[lane] = std::numeric_limits<float>::infinity();
-        packet.ray.mask[lane] = 0xFFFFFFFFu;
-        packet.ray.time[lane] = 0.0f;
-        packet.ray.flags[lane] = 0;
-        packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+        SetPacketRay(lane, centre, direction, &packet);
       }
       rtcIntersect16(valid, impl_->scene, &context, &packet);
       for (int lane = 0; lane < 16; ++lane) {
