@@ -1,0 +1,115 @@
+#include "lib/lut/frustum_lut.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace lutex {
+namespace {
+
+// Index of the lower node and the fraction towards the upper one for a continuous coordinate in
+// [0, count - 1]; clamped.
+void Split(double coordinate, int count, int* lower, double* fraction) {
+  if (count <= 1) {
+    *lower = 0;
+    *fraction = 0.0;
+    return;
+  }
+  const double clamped = std::clamp(coordinate, 0.0, static_cast<double>(count - 1));
+  *lower = std::min(static_cast<int>(std::floor(clamped)), count - 2);
+  *fraction = clamped - *lower;
+}
+
+}  // namespace
+
+void FrustumLutGrid::Check() const {
+  if (nx < 1 || ny < 1 || nz < 1) throw std::invalid_argument("LUT grid needs nx, ny, nz >= 1");
+  if (nx > 4096 || ny > 4096 || nz > 4096) throw std::invalid_argument("LUT grid is implausibly large");
+  if (!(z_near > 0.0) || !(z_far >= z_near) || !std::isfinite(z_far)) {
+    throw std::invalid_argument("LUT depth range needs 0 < z_near <= z_far (got " + std::to_string(z_near) + ", " +
+                                std::to_string(z_far) + ")");
+  }
+  if (nz > 1 && z_far == z_near) throw std::invalid_argument("LUT with several slabs needs z_far > z_near");
+  if (image_width <= 0 || image_height <= 0) throw std::invalid_argument("LUT grid needs the image size");
+}
+
+double FrustumLutGrid::SlabDepth(int k) const {
+  if (nz == 1) return z_near;
+  const double t = static_cast<double>(k) / (nz - 1);
+  if (spacing == DepthSpacing::kUniformZ) return z_near + t * (z_far - z_near);
+  return 1.0 / (1.0 / z_near + t * (1.0 / z_far - 1.0 / z_near));
+}
+
+double FrustumLutGrid::SlabCoordinate(double z) const {
+  if (nz == 1) return 0.0;
+  double t;
+  if (spacing == DepthSpacing::kUniformZ) {
+    t = (z - z_near) / (z_far - z_near);
+  } else {
+    t = (1.0 / z_near - 1.0 / std::max(z, 1e-12)) / (1.0 / z_near - 1.0 / z_far);
+  }
+  return std::clamp(t, 0.0, 1.0) * (nz - 1);
+}
+
+bool FrustumLutGrid::operator==(const FrustumLutGrid& other) const {
+  return nx == other.nx && ny == other.ny && nz == other.nz && z_near == other.z_near && z_far == other.z_far &&
+         spacing == other.spacing && image_width == other.image_width && image_height == other.image_height;
+}
+
+FrustumLut::FrustumLut(const FrustumLutGrid& grid) : grid_(grid) {
+  grid_.Check();
+  nodes_.resize(static_cast<std::size_t>(grid_.NumNodes()));
+}
+
+Eigen::Vector2d FrustumLut::NodePixel(int i, int j) const {
+  return {static_cast<double>(i) / grid_.nx * grid_.image_width, static_cast<double>(j) / grid_.ny * grid_.image_height};
+}
+
+NodeWeights FrustumLut::Weights(double u, double v, double z) const {
+  int i0, j0, k0;
+  double fx, fy, fz;
+  Split(u / grid_.image_width * grid_.nx, grid_.NodesX(), &i0, &fx);
+  Split(v / grid_.image_height * grid_.ny, grid_.NodesY(), &j0, &fy);
+  Split(grid_.SlabCoordinate(z), grid_.nz, &k0, &fz);
+  NodeWeights weights;
+  for (int corner = 0; corner < 8; ++corner) {
+    const int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
+    const double w = (di ? fx : 1.0 - fx) * (dj ? fy : 1.0 - fy) * (dk ? fz : 1.0 - fz);
+    if (w == 0.0) continue;
+    const int index = grid_.NodeIndex(std::min(i0 + di, grid_.nx), std::min(j0 + dj, grid_.ny),
+                                      std::min(k0 + dk, grid_.nz - 1));
+    weights.node[weights.count] = index;
+    weights.weight[weights.count] = w;
+    ++weights.count;
+  }
+  return weights;
+}
+
+LutNode FrustumLut::Lookup(double u, double v, double z) const {
+  const NodeWeights weights = Weights(u, v, z);
+  LutNode result;
+  for (int n = 0; n < weights.count; ++n) {
+    const LutNode& node_value = nodes_[weights.node[n]];
+    result.alpha += weights.weight[n] * node_value.alpha;
+    result.beta += weights.weight[n] * node_value.beta;
+  }
+  return result;
+}
+
+FrustumLut FrustumLut::Resampled(const FrustumLutGrid& grid) const {
+  if (grid.image_width != grid_.image_width || grid.image_height != grid_.image_height) {
+    throw std::invalid_argument("resampling a LUT cannot change its image size");
+  }
+  FrustumLut result(grid);
+  for (int k = 0; k < grid.nz; ++k) {
+    for (int j = 0; j < grid.NodesY(); ++j) {
+      for (int i = 0; i < grid.NodesX(); ++i) {
+        const Eigen::Vector2d pixel = result.NodePixel(i, j);
+        result.node(i, j, k) = Lookup(pixel.x(), pixel.y(), grid.SlabDepth(k));
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace lutex

@@ -1,0 +1,110 @@
+#include "lib/lut/lut_file.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "lib/util/binary_io.h"
+#include "lib/util/file_streams.h"
+
+namespace lutex {
+namespace {
+
+constexpr const char* kMagic = "LUTEX-LUT 1";
+constexpr const char* kLayout = "slab k, then row j, then column i; per node alpha_r alpha_g alpha_b beta_r beta_g beta_b";
+
+}  // namespace
+
+FrustumLut ReadLut(std::istream& stream) {
+  std::string line;
+  if (!std::getline(stream, line) || line.rfind("LUTEX-LUT", 0) != 0) {
+    throw std::runtime_error("not a lutex LUT file (no 'LUTEX-LUT' magic)");
+  }
+  if (line != kMagic) throw std::runtime_error("unsupported LUT file version '" + line + "' (this lutex reads version 1)");
+  if (!std::getline(stream, line)) throw std::runtime_error("truncated LUT file: no header");
+  nlohmann::json header;
+  try {
+    header = nlohmann::json::parse(line);
+  } catch (const nlohmann::json::exception& error) {
+    throw std::runtime_error(std::string("LUT header is not valid JSON: ") + error.what());
+  }
+  FrustumLutGrid grid;
+  try {
+    grid.nx = header.at("nx").get<int>();
+    grid.ny = header.at("ny").get<int>();
+    grid.nz = header.at("nz").get<int>();
+    grid.z_near = header.at("z_near").get<double>();
+    grid.z_far = header.at("z_far").get<double>();
+    const std::string spacing = header.at("depth_spacing").get<std::string>();
+    if (spacing == "z") {
+      grid.spacing = DepthSpacing::kUniformZ;
+    } else if (spacing == "inverse_z") {
+      grid.spacing = DepthSpacing::kUniformInverseZ;
+    } else {
+      throw std::runtime_error("unknown depth_spacing '" + spacing + "' (expected z or inverse_z)");
+    }
+    grid.image_width = header.at("image_width").get<int>();
+    grid.image_height = header.at("image_height").get<int>();
+    if (header.at("value_type").get<std::string>() != "float64 little-endian") {
+      throw std::runtime_error("unsupported value_type");
+    }
+  } catch (const nlohmann::json::exception& error) {
+    throw std::runtime_error(std::string("LUT header lacks a field or has a wrong type: ") + error.what());
+  }
+  try {
+    grid.Check();
+  } catch (const std::invalid_argument& error) {
+    throw std::runtime_error(std::string("LUT header: ") + error.what());
+  }
+  FrustumLut lut(grid);
+  const long long expected = static_cast<long long>(grid.NumNodes()) * 6;
+  if (header.value("num_values", -1LL) != expected) {
+    throw std::runtime_error("LUT header's num_values does not match its grid (" + std::to_string(expected) + ")");
+  }
+  for (int n = 0; n < grid.NumNodes(); ++n) {
+    LutNode& node = lut.node(n);
+    for (int c = 0; c < 3; ++c) node.alpha[c] = ReadBinary<double>(stream, "the LUT values");
+    for (int c = 0; c < 3; ++c) node.beta[c] = ReadBinary<double>(stream, "the LUT values");
+    if (!node.alpha.allFinite() || !node.beta.allFinite()) {
+      throw std::runtime_error("LUT node " + std::to_string(n) + " has a value that is not finite");
+    }
+  }
+  if (stream.peek() != std::istream::traits_type::eof()) throw std::runtime_error("LUT file has data after its values");
+  return lut;
+}
+
+FrustumLut ReadLut(const std::filesystem::path& path) {
+  return ParseFile(path, std::ios::binary, [](std::istream& s) { return ReadLut(s); });
+}
+
+void WriteLut(const FrustumLut& lut, std::ostream& stream) {
+  const FrustumLutGrid& grid = lut.grid();
+  nlohmann::json header;
+  header["format"] = "lutex-lut";
+  header["version"] = 1;
+  header["nx"] = grid.nx;
+  header["ny"] = grid.ny;
+  header["nz"] = grid.nz;
+  header["z_near"] = grid.z_near;
+  header["z_far"] = grid.z_far;
+  header["depth_spacing"] = grid.spacing == DepthSpacing::kUniformZ ? "z" : "inverse_z";
+  header["image_width"] = grid.image_width;
+  header["image_height"] = grid.image_height;
+  header["node_layout"] = kLayout;
+  header["value_type"] = "float64 little-endian";
+  header["num_values"] = static_cast<long long>(grid.NumNodes()) * 6;
+  stream << kMagic << "\n" << header.dump() << "\n";
+  for (int n = 0; n < grid.NumNodes(); ++n) {
+    const LutNode& node = lut.node(n);
+    for (int c = 0; c < 3; ++c) WriteBinary<double>(stream, node.alpha[c]);
+    for (int c = 0; c < 3; ++c) WriteBinary<double>(stream, node.beta[c]);
+  }
+}
+
+void WriteLut(const FrustumLut& lut, const std::filesystem::path& path) {
+  WriteFileAtomically(path, std::ios::binary, [&lut](std::ostream& s) { WriteLut(lut, s); });
+}
+
+}  // namespace lutex

@@ -1,0 +1,159 @@
+#include "lib/lut/frustum_lut.h"
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "lib/lut/lut_file.h"
+#include "lib/lut/lut_slab_images.h"
+#include "tests/support/temp_dir.h"
+
+namespace lutex {
+namespace {
+
+FrustumLutGrid Grid(int nx, int ny, int nz, DepthSpacing spacing) {
+  FrustumLutGrid grid;
+  grid.nx = nx;
+  grid.ny = ny;
+  grid.nz = nz;
+  grid.z_near = 0.5;
+  grid.z_far = 3.0;
+  grid.spacing = spacing;
+  grid.image_width = 640;
+  grid.image_height = 480;
+  return grid;
+}
+
+// Linear in the coordinates the LUT interpolates linearly in: pixel u, v and z (or 1/z).
+LutNode LinearFunction(double u, double v, double z, DepthSpacing spacing) {
+  const double w = spacing == DepthSpacing::kUniformZ ? z : 1.0 / z;
+  LutNode node;
+  node.alpha = Eigen::Vector3d(0.3 + 0.001 * u - 0.002 * v + 0.5 * w, 0.1 + 0.0005 * u, 2.0 - w);
+  node.beta = Eigen::Vector3d(0.01 * w, 0.002 * v, 0.0001 * u + 0.0003 * v + 0.02 * w);
+  return node;
+}
+
+FrustumLut FilledLinear(const FrustumLutGrid& grid) {
+  FrustumLut lut(grid);
+  for (int k = 0; k < grid.nz; ++k) {
+    for (int j = 0; j < grid.NodesY(); ++j) {
+      for (int i = 0; i < grid.NodesX(); ++i) {
+        const Eigen::Vector2d pixel = lut.NodePixel(i, j);
+        lut.node(i, j, k) = LinearFunction(pixel.x(), pixel.y(), grid.SlabDepth(k), grid.spacing);
+      }
+    }
+  }
+  return lut;
+}
+
+// A LUT filled from a function linear in (u, v, z) (uniform z) or (u, v, 1/z) (uniform 1/z) reproduces it
+// exactly anywhere inside the frustum, because trilinear interpolation is exact on linear functions.
+TEST(FrustumLut, ReproducesLinearFunctionsAnywhere) {
+  std::mt19937 random(7);
+  for (DepthSpacing spacing : {DepthSpacing::kUniformZ, DepthSpacing::kUniformInverseZ}) {
+    const FrustumLut lut = FilledLinear(Grid(8, 6, 5, spacing));
+    std::uniform_real_distribution<double> u(0, 640), v(0, 480), z(0.5, 3.0);
+    for (int n = 0; n < 500; ++n) {
+      const double pu = u(random), pv = v(random), pz = z(random);
+      const LutNode expected = LinearFunction(pu, pv, pz, spacing);
+      const LutNode actual = lut.Lookup(pu, pv, pz);
+      ASSERT_LT((actual.alpha - expected.alpha).norm(), 1e-12);
+      ASSERT_LT((actual.beta - expected.beta).norm(), 1e-12);
+    }
+  }
+}
+
+// Outside the image or the depth range the border value holds.
+TEST(FrustumLut, ClampsAtTheBorders) {
+  const FrustumLut lut = FilledLinear(Grid(4, 3, 3, DepthSpacing::kUniformZ));
+  EXPECT_LT((lut.Lookup(-50, 100, 9.0).alpha - lut.Lookup(0, 100, 3.0).alpha).norm(), 1e-12);
+  EXPECT_LT((lut.Lookup(700, 500, 0.1).beta - lut.Lookup(640, 480, 0.5).beta).norm(), 1e-12);
+}
+
+TEST(FrustumLut, WeightsSumToOneAndNameTheRightNodes) {
+  const FrustumLut lut = FilledLinear(Grid(4, 3, 3, DepthSpacing::kUniformInverseZ));
+  const NodeWeights at_node = lut.Weights(160, 160, lut.grid().SlabDepth(1));  // node (1, 1, 1) exactly
+  double weight_of_node = 0.0;
+  for (int n = 0; n < at_node.count; ++n) {
+    if (at_node.node[n] == lut.grid().NodeIndex(1, 1, 1)) weight_of_node += at_node.weight[n];
+  }
+  EXPECT_NEAR(weight_of_node, 1.0, 1e-12);
+  const NodeWeights inside = lut.Weights(200.0, 100.0, 1.3);
+  double sum = 0;
+  for (int n = 0; n < inside.count; ++n) sum += inside.weight[n];
+  EXPECT_EQ(inside.count, 8);
+  EXPECT_NEAR(sum, 1.0, 1e-15);
+}
+
+// Coarse to fine and back: corner-aligned grids nest (every 4 x 3 node is a 20 x 15 node), so upsampling
+// then downsampling returns the coarse nodes exactly, for any values.
+TEST(FrustumLut, ResampleUpThenDownIsIdentityOnCoarseNodes) {
+  FrustumLut coarse(Grid(4, 3, 10, DepthSpacing::kUniformInverseZ));
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> value(0.0, 1.0);
+  for (int n = 0; n < coarse.grid().NumNodes(); ++n) {
+    coarse.node(n).alpha = Eigen::Vector3d(value(random), value(random), value(random));
+    coarse.node(n).beta = Eigen::Vector3d(value(random), value(random), value(random));
+  }
+  const FrustumLut back = coarse.Resampled(Grid(20, 15, 10, DepthSpacing::kUniformInverseZ))
+                              .Resampled(Grid(40, 30, 10, DepthSpacing::kUniformInverseZ))
+                              .Resampled(coarse.grid());
+  for (int n = 0; n < coarse.grid().NumNodes(); ++n) {
+    ASSERT_LT((back.node(n).alpha - coarse.node(n).alpha).norm(), 1e-12);
+    ASSERT_LT((back.node(n).beta - coarse.node(n).beta).norm(), 1e-12);
+  }
+}
+
+TEST(LutFile, RoundTripIsExact) {
+  const FrustumLut lut = FilledLinear(Grid(5, 4, 3, DepthSpacing::kUniformInverseZ));
+  testing::TempDir dir;
+  WriteLut(lut, dir.path() / "a.lut");
+  const FrustumLut read = ReadLut(dir.path() / "a.lut");
+  EXPECT_TRUE(read.grid() == lut.grid());
+  for (int n = 0; n < lut.grid().NumNodes(); ++n) {
+    ASSERT_EQ(read.node(n).alpha, lut.node(n).alpha);
+    ASSERT_EQ(read.node(n).beta, lut.node(n).beta);
+  }
+}
+
+std::string ReadError(const std::string& bytes) {
+  std::istringstream stream(bytes);
+  try {
+    ReadLut(stream);
+  } catch (const std::runtime_error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(LutFile, BadFilesAreClearErrors) {
+  std::ostringstream good;
+  WriteLut(FilledLinear(Grid(2, 2, 2, DepthSpacing::kUniformZ)), good);
+  const std::string bytes = good.str();
+  EXPECT_NE(ReadError(bytes.substr(0, bytes.size() - 5)).find("truncated"), std::string::npos);
+  EXPECT_NE(ReadError("hello").find("not a lutex LUT"), std::string::npos);
+  EXPECT_NE(ReadError("LUTEX-LUT 2\n{}\n").find("version"), std::string::npos);
+  EXPECT_NE(ReadError("LUTEX-LUT 1\n{\"nx\": 2}\n").find("lacks a field"), std::string::npos);
+  EXPECT_NE(ReadError(bytes + "x").find("after its values"), std::string::npos);
+  std::string with_nan = bytes;
+  const double nan = std::nan("");
+  std::memcpy(&with_nan[with_nan.size() - 8], &nan, 8);
+  EXPECT_NE(ReadError(with_nan).find("not finite"), std::string::npos);
+}
+
+TEST(LutSlabImages, OneAlphaAndOneBetaPicturePerSlab) {
+  const FrustumLut lut = FilledLinear(Grid(4, 3, 3, DepthSpacing::kUniformZ));
+  testing::TempDir dir;
+  WriteLutSlabImages(lut, dir.path(), 64);
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "slab_02_alpha.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "slab_00_beta.png"));
+  const LutSlabImages images = RenderLutSlabs(lut, 64);
+  EXPECT_EQ(images.alpha[0].rows, 48);
+  EXPECT_GT(images.alpha_scale, 0.0);
+}
+
+}  // namespace
+}  // namespace lutex
