@@ -29,6 +29,9 @@ void Mesh::Check(const std::string& context) const {
   if (!vertex_texcoords.empty() && vertex_texcoords.size() != vertices.size()) {
     throw std::runtime_error(context + ": texture coordinate count differs from vertex count");
   }
+  if (!vertex_normals.empty() && vertex_normals.size() != vertices.size()) {
+    throw std::runtime_error(context + ": vertex normal count differs from vertex count");
+  }
   if (!corner_texcoords.empty() && corner_texcoords.size() != faces.size()) {
     throw std::runtime_error(context + ": per-corner texture coordinate count differs from face count");
   }

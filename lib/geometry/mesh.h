@@ -21,6 +21,8 @@ struct Mesh {
   // Optional attributes: empty, or one entry per vertex (colours as stored: 8-bit, usually sRGB).
   std::vector<Eigen::Matrix<std::uint8_t, 3, 1>> vertex_colors;
   std::vector<Eigen::Vector2f> vertex_texcoords;
+  // Shading normals (unit), for smooth shading between faces.
+  std::vector<Eigen::Vector3f> vertex_normals;
   // Optional per-face-corner texture coordinates (OBJ-style), empty or 3 per face.
   std::vector<std::array<Eigen::Vector2f, 3>> corner_texcoords;
 

@@ -68,6 +68,7 @@ void AppendMesh(const Mesh& other, Mesh* mesh) {
   const auto offset = static_cast<std::uint32_t>(mesh->vertices.size());
   const bool colors = !mesh->vertex_colors.empty() && !other.vertex_colors.empty();
   const bool texcoords = !mesh->vertex_texcoords.empty() && !other.vertex_texcoords.empty();
+  const bool normals = !mesh->vertex_normals.empty() && !other.vertex_normals.empty();
   mesh->vertices.insert(mesh->vertices.end(), other.vertices.begin(), other.vertices.end());
   for (const Mesh::Face& face : other.faces) mesh->faces.push_back({face[0] + offset, face[1] + offset, face[2] + offset});
   if (colors) {
@@ -80,6 +81,11 @@ void AppendMesh(const Mesh& other, Mesh* mesh) {
                                   other.vertex_texcoords.end());
   } else {
     mesh->vertex_texcoords.clear();
+  }
+  if (normals) {
+    mesh->vertex_normals.insert(mesh->vertex_normals.end(), other.vertex_normals.begin(), other.vertex_normals.end());
+  } else {
+    mesh->vertex_normals.clear();
   }
   mesh->corner_texcoords.clear();
 }

@@ -201,6 +201,8 @@ Mesh ReadPly(std::istream& stream) {
       const bool colours = red >= 0 && green >= 0 && blue >= 0;
       const int u = FindFirst(element, {"s", "u", "texture_u"}), v = FindFirst(element, {"t", "v", "texture_v"});
       const bool texcoords = u >= 0 && v >= 0;
+      const int nx = element.Find("nx"), ny = element.Find("ny"), nz = element.Find("nz");
+      const bool normals = nx >= 0 && ny >= 0 && nz >= 0;
       mesh.vertices.reserve(std::min<std::size_t>(element.count, 1u << 24));
       for (std::size_t i = 0; i < element.count; ++i) {
         ReadRecord(reader, element, &record);
@@ -215,6 +217,10 @@ Mesh ReadPly(std::istream& stream) {
             colour[c++] = static_cast<std::uint8_t>(std::clamp(value, 0.0, 255.0));
           }
           mesh.vertex_colors.push_back(colour);
+        }
+        if (normals) {
+          mesh.vertex_normals.push_back(
+              Eigen::Vector3d(record.scalars[nx], record.scalars[ny], record.scalars[nz]).normalized().cast<float>());
         }
         if (texcoords) {
           mesh.vertex_texcoords.emplace_back(static_cast<float>(record.scalars[u]), static_cast<float>(record.scalars[v]));
@@ -265,9 +271,11 @@ void WritePly(const Mesh& mesh, std::ostream& stream) {
   const bool colours = !mesh.vertex_colors.empty();
   const bool texcoords = !mesh.vertex_texcoords.empty();
   const bool corners = !mesh.corner_texcoords.empty();
+  const bool normals = !mesh.vertex_normals.empty();
   stream << "ply\nformat binary_little_endian 1.0\ncomment written by lutex\n"
          << "element vertex " << mesh.vertices.size() << "\n"
          << "property double x\nproperty double y\nproperty double z\n";
+  if (normals) stream << "property float nx\nproperty float ny\nproperty float nz\n";
   if (colours) stream << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   if (texcoords) stream << "property float s\nproperty float t\n";
   stream << "element face " << mesh.faces.size() << "\nproperty list uchar int vertex_indices\n";
@@ -278,6 +286,7 @@ void WritePly(const Mesh& mesh, std::ostream& stream) {
   };
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     for (int k = 0; k < 3; ++k) put(mesh.vertices[i][k]);
+    if (normals) for (int k = 0; k < 3; ++k) put(mesh.vertex_normals[i][k]);
     if (colours) for (int k = 0; k < 3; ++k) put(mesh.vertex_colors[i][k]);
     if (texcoords) for (int k = 0; k < 2; ++k) put(mesh.vertex_texcoords[i][k]);
   }

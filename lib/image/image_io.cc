@@ -1,0 +1,120 @@
+#include "lib/image/image_io.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lib/util/atomic_output.h"
+
+namespace lutex {
+namespace {
+
+// A 256-entry decoding table for 8-bit sRGB.
+const float* SrgbDecodeTable() {
+  static const auto table = [] {
+    static float values[256];
+    for (int i = 0; i < 256; ++i) values[i] = static_cast<float>(SrgbToLinear(i / 255.0));
+    return values;
+  }();
+  return table;
+}
+
+}  // namespace
+
+ImageEncoding ParseImageEncoding(const std::string& name) {
+  if (name == "srgb8") return ImageEncoding::kSrgb8;
+  if (name == "linear16") return ImageEncoding::kLinear16;
+  if (name == "float") return ImageEncoding::kFloat;
+  throw std::invalid_argument("unknown image encoding '" + name + "' (expected srgb8, linear16 or float)");
+}
+
+std::string ImageEncodingName(ImageEncoding encoding) {
+  switch (encoding) {
+    case ImageEncoding::kSrgb8: return "srgb8";
+    case ImageEncoding::kLinear16: return "linear16";
+    case ImageEncoding::kFloat: return "float";
+  }
+  return "?";
+}
+
+double SrgbToLinear(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+double LinearToSrgb(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+cv::Mat ReadLinearImage(const std::filesystem::path& path, ImageEncoding encoding) {
+  // OpenCV reads EXR only when asked to by this variable, which must be set before the first read.
+  setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
+  if (!std::filesystem::exists(path)) throw std::runtime_error(path.string() + ": no such image");
+  cv::Mat stored = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  if (stored.empty()) throw std::runtime_error(path.string() + ": not a readable image (corrupt, truncated or unknown format)");
+  if (stored.channels() == 1) cv::cvtColor(stored, stored, cv::COLOR_GRAY2BGR);
+  if (stored.channels() == 4) cv::cvtColor(stored, stored, cv::COLOR_BGRA2BGR);
+  const int depth = stored.depth();
+  const bool matches = (encoding == ImageEncoding::kSrgb8 && depth == CV_8U) ||
+                       (encoding == ImageEncoding::kLinear16 && depth == CV_16U) ||
+                       (encoding == ImageEncoding::kFloat && (depth == CV_32F || depth == CV_16F));
+  if (!matches) {
+    throw std::runtime_error(path.string() + ": the image has " +
+                             (depth == CV_8U ? "8-bit" : depth == CV_16U ? "16-bit" : "float") +
+                             " samples but the encoding is " + ImageEncodingName(encoding));
+  }
+  cv::Mat linear(stored.size(), CV_32FC3);
+  if (encoding == ImageEncoding::kSrgb8) {
+    const float* table = SrgbDecodeTable();
+    for (int row = 0; row < stored.rows; ++row) {
+      const auto* in = stored.ptr<cv::Vec3b>(row);
+      auto* out = linear.ptr<cv::Vec3f>(row);
+      for (int col = 0; col < stored.cols; ++col) out[col] = cv::Vec3f(table[in[col][2]], table[in[col][1]], table[in[col][0]]);
+    }
+    return linear;
+  }
+  cv::Mat as_float;
+  stored.convertTo(as_float, CV_32FC3, encoding == ImageEncoding::kLinear16 ? 1.0 / 65535.0 : 1.0);
+  cv::cvtColor(as_float, linear, cv::COLOR_BGR2RGB);
+  return linear;
+}
+
+cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding) {
+  CV_Assert(linear_rgb.type() == CV_32FC3);
+  cv::Mat bgr;
+  cv::cvtColor(linear_rgb, bgr, cv::COLOR_RGB2BGR);
+  cv::patchNaNs(bgr, 0.0);
+  if (encoding == ImageEncoding::kFloat) return bgr;
+  if (encoding == ImageEncoding::kLinear16) {
+    cv::Mat encoded;
+    bgr.convertTo(encoded, CV_16UC3, 65535.0);  // saturating and rounding
+    return encoded;
+  }
+  cv::Mat encoded(bgr.size(), CV_8UC3);
+  for (int row = 0; row < bgr.rows; ++row) {
+    const auto* in = bgr.ptr<cv::Vec3f>(row);
+    auto* out = encoded.ptr<cv::Vec3b>(row);
+    for (int col = 0; col < bgr.cols; ++col) {
+      for (int c = 0; c < 3; ++c) {
+        const double clamped = std::min(1.0, std::max(0.0, static_cast<double>(in[col][c])));
+        out[col][c] = static_cast<uchar>(std::lround(255.0 * LinearToSrgb(clamped)));
+      }
+    }
+  }
+  return encoded;
+}
+
+void WriteLinearImage(const cv::Mat& linear_rgb, const std::filesystem::path& path, ImageEncoding encoding) {
+  setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
+  const cv::Mat encoded = EncodeLinearImage(linear_rgb, encoding);
+  AtomicOutputFile output(path);
+  if (!cv::imwrite(output.temporary_path().string(), encoded)) {
+    throw std::runtime_error(path.string() + ": could not write the image (does the extension support " +
+                             ImageEncodingName(encoding) + "?)");
+  }
+  output.Commit();
+}
+
+}  // namespace lutex

@@ -1,0 +1,140 @@
+#include "lib/model/simulator.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "lib/util/parallel_for.h"
+
+namespace lutex {
+
+void SimulatorOptions::Check() const {
+  if (backscatter_steps < 1) throw std::invalid_argument("backscatter_steps must be at least 1");
+  if (!(backscatter_scale > 0.0)) throw std::invalid_argument("backscatter_scale must be positive");
+  if (!(max_range > 0.0)) throw std::invalid_argument("max_range must be positive");
+}
+
+Simulator::Simulator(const Mesh& mesh, const LightRig& rig, const Water& water, const SurfaceAlbedo& albedo,
+                     const SimulatorOptions& options)
+    : mesh_(mesh), rig_(rig), water_(water), albedo_(albedo), options_(options), scene_(mesh) {
+  options_.Check();
+  if (rig_.lights.empty()) throw std::invalid_argument("the light rig has no lights");
+}
+
+Eigen::Vector3d Simulator::LightTerm(const Light& light, const Eigen::Vector3d& point_in_cam,
+                                     Eigen::Vector3d* to_light) const {
+  const Eigen::Vector3d offset = light.position_in_cam - point_in_cam;
+  const double distance = offset.norm();
+  *to_light = offset / distance;
+  const double cos_psi = -light.direction_in_cam.dot(*to_light);
+  const double profile = light.Profile(cos_psi);
+  if (profile <= 0.0) return Eigen::Vector3d::Zero();
+  const Eigen::Array3d transmission = (-water_.Attenuation().array() * distance).exp();
+  return (light.intensity.array() * transmission * (profile / (distance * distance))).matrix();
+}
+
+Eigen::Vector3d Simulator::Backscatter(const Eigen::Vector3d& direction_in_cam, double range) const {
+  if (water_.scattering.isZero()) return Eigen::Vector3d::Zero();
+  const double s0 = options_.backscatter_scale;
+  const double total = std::log1p(range / s0);
+  const double step = total / options_.backscatter_steps;
+  Eigen::Array3d sum = Eigen::Array3d::Zero();
+  for (int k = 0; k < options_.backscatter_steps; ++k) {
+    const double w = (k + 0.5) * step;
+    const double s = s0 * std::expm1(w);
+    const double ds = s0 * std::exp(w) * step;
+    const Eigen::Vector3d point = s * direction_in_cam;
+    Eigen::Array3d in_scattered = Eigen::Array3d::Zero();
+    for (const Light& light : rig_.lights) {
+      Eigen::Vector3d to_light;
+      const Eigen::Vector3d term = LightTerm(light, point, &to_light);
+      // Light propagates along -to_light and scatters towards the camera, along -direction.
+      in_scattered += term.array() * HenyeyGreenstein(to_light.dot(direction_in_cam), water_.anisotropy_g);
+    }
+    sum += in_scattered * (-water_.Attenuation().array() * s).exp() * ds;
+  }
+  return (sum * water_.scattering.array()).matrix();
+}
+
+Eigen::Vector3d Simulator::SignalFactor(const Eigen::Vector3d& point_in_cam) const {
+  Eigen::Array3d sum = Eigen::Array3d::Zero();
+  for (const Light& light : rig_.lights) {
+    Eigen::Vector3d to_light;
+    sum += LightTerm(light, point_in_cam, &to_light).array();
+  }
+  const Eigen::Array3d to_camera = (-water_.Attenuation().array() * point_in_cam.norm()).exp();
+  return (sum * to_camera / M_PI).matrix();
+}
+
+cv::Mat Simulator::Render(const CameraRays& rays, const Rigid3d& cam_from_world) const {
+  GeometryMapsOptions map_options;
+  map_options.barycentrics = true;
+  map_options.num_threads = options_.num_threads;
+  const GeometryMaps maps = scene_.Render(rays, cam_from_world, map_options);
+  const Rigid3d world_from_cam = cam_from_world.Inverse();
+  const Eigen::Matrix3d cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix();
+  cv::Mat radiance(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(0));
+  ParallelFor(static_cast<std::size_t>(rays.height()), options_.num_threads, [&](std::size_t row_index) {
+    const int row = static_cast<int>(row_index);
+    for (int col = 0; col < rays.width(); ++col) {
+      const Eigen::Vector3d direction = rays.Direction(col, row).cast<double>();
+      if (!direction.allFinite()) continue;
+      const float depth = maps.depth.at<float>(row, col);
+      Eigen::Vector3d value;
+      if (std::isnan(depth)) {
+        value = Backscatter(direction, options_.max_range);
+      } else {
+        const double range = depth / direction.z();
+        const Eigen::Vector3d point = range * direction;
+        const int face = maps.face_id.at<int>(row, col);
+        const cv::Vec2f b = maps.barycentrics.at<cv::Vec2f>(row, col);
+        const cv::Vec3f geometric = maps.normal.at<cv::Vec3f>(row, col);
+        Eigen::Vector3d normal(geometric[0], geometric[1], geometric[2]);
+        if (!mesh_.vertex_normals.empty()) {
+          const Mesh::Face& corners = mesh_.faces[face];
+          const Eigen::Vector3d interpolated = (1.0 - b[0] - b[1]) * mesh_.vertex_normals[corners[0]].cast<double>() +
+                                               b[0] * mesh_.vertex_normals[corners[1]].cast<double>() +
+                                               b[1] * mesh_.vertex_normals[corners[2]].cast<double>();
+          normal = (cam_from_world_rotation * interpolated).normalized();
+          if (normal.dot(direction) > 0.0) normal = -normal;
+        }
+        const Eigen::Vector3d albedo = albedo_.At(mesh_, face, b[0], b[1]);
+        Eigen::Array3d irradiance = Eigen::Array3d::Zero();
+        for (const Light& light : rig_.lights) {
+          Eigen::Vector3d to_light;
+          const Eigen::Vector3d term = LightTerm(light, point, &to_light);
+          const double cos_incidence = normal.dot(to_light);
+          if (cos_incidence <= 0.0 || term.isZero()) continue;
+          if (options_.shadows) {
+            const Eigen::Vector3d origin = world_from_cam * (point + 1e-5 * (1.0 + range) * normal);
+            const RayHit hit = scene_.Intersect(origin, world_from_cam * light.position_in_cam - origin);
+            if (hit.hit && hit.distance < 1.0 - 1e-6) continue;
+          }
+          irradiance += term.array() * cos_incidence;
+        }
+        const Eigen::Array3d to_camera = (-water_.Attenuation().array() * range).exp();
+        value = (irradiance * to_camera * albedo.array() / M_PI).matrix() + Backscatter(direction, range);
+      }
+      radiance.at<cv::Vec3f>(row, col) =
+          cv::Vec3f(static_cast<float>(value.x()), static_cast<float>(value.y()), static_cast<float>(value.z()));
+    }
+  });
+  return radiance;
+}
+
+FrustumLut Simulator::TrueLut(const Camera& camera, const FrustumLutGrid& grid) const {
+  FrustumLut lut(grid);
+  ParallelFor(static_cast<std::size_t>(grid.nz), options_.num_threads, [&](std::size_t k) {
+    for (int j = 0; j < grid.NodesY(); ++j) {
+      for (int i = 0; i < grid.NodesX(); ++i) {
+        const Eigen::Vector3d ray = camera.CamFromImg(lut.NodePixel(i, j));  // z = 1
+        const Eigen::Vector3d point = grid.SlabDepth(static_cast<int>(k)) * ray;
+        LutNode& node = lut.node(i, j, static_cast<int>(k));
+        node.alpha = SignalFactor(point);
+        node.beta = Backscatter(ray.normalized(), point.norm());
+      }
+    }
+  });
+  return lut;
+}
+
+}  // namespace lutex

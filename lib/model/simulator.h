@@ -1,0 +1,86 @@
+#pragma once
+
+// A physically based forward renderer of a camera with co-moving lights in water, independent of the
+// LUT (it is what the LUT is tested against). For each pixel, with x the surface point in the camera
+// frame and d_cam = |x|:
+//
+//   direct      = rho / pi * sum_l I_l f_l(psi_l) cos(i_l) / d_l^2 * exp(-c (d_l + d_cam)) * visible_l
+//   backscatter = integral_0^D  b * p_HG(cos angle_l(s)) * I_l f_l(psi_l(s)) / d_l(s)^2
+//                               * exp(-c (d_l(s) + s)) ds,  summed over lights
+//
+// per channel, with d_l the distance from light l, i_l its incidence angle at the surface (shading
+// normal), psi_l the angle from its beam axis, visible_l a shadow ray, c = a + b, D the range to the
+// surface (or `max_range` where the ray meets nothing: pure water). Backscatter is single scattering
+// (as in the shared Blender renders) without shadowing inside the volume, integrated by the midpoint
+// rule in w = log(1 + s / s0), which puts steps where the integrand changes fast (near the camera) and
+// converges to < 0.5 % with the default 96 steps (tested against 4096).
+//
+// TrueLut evaluates, at every LUT node, what a perfect calibration should find from the same physics:
+//   alpha(x) = sum_l I_l f_l(psi_l) / d_l^2 * exp(-c (d_l + |x|)) / pi,   beta(x) = backscatter to |x|,
+// which is exact for I = alpha cos_theta rho + beta when cos(i_l) = cos_theta, i.e. under the model's
+// approximation that the light is at the camera centre; for offset lights the difference is the model
+// error, not a simulator error.
+
+#include <cstdint>
+
+#include <opencv2/core.hpp>
+
+#include <Eigen/Core>
+
+#include "lib/geometry/camera.h"
+#include "lib/geometry/mesh.h"
+#include "lib/geometry/rigid3d.h"
+#include "lib/lut/frustum_lut.h"
+#include "lib/model/light_rig.h"
+#include "lib/model/surface_albedo.h"
+#include "lib/model/water.h"
+#include "lib/raycast/camera_rays.h"
+#include "lib/raycast/raycast_scene.h"
+
+namespace lutex {
+
+struct SimulatorOptions {
+  // Steps of the backscatter integral along each ray.
+  int backscatter_steps = 96;
+  // s0 [m] of the log substitution: steps are ~s0 long near the camera and grow with distance.
+  double backscatter_scale = 0.1;
+  // Range of rays that hit nothing (pure water), metres.
+  double max_range = 30.0;
+  // Cast shadow rays to the lights.
+  bool shadows = true;
+  // Threads over image rows; <= 0 means all cores.
+  int num_threads = 0;
+
+  // Throws std::invalid_argument on nonsense.
+  void Check() const;
+};
+
+class Simulator {
+ public:
+  // Keeps references to mesh and albedo: they must outlive the simulator.
+  Simulator(const Mesh& mesh, const LightRig& rig, const Water& water, const SurfaceAlbedo& albedo,
+            const SimulatorOptions& options = {});
+
+  // Noise-free linear radiance (CV_32FC3, RGB) seen by the camera at cam_from_world.
+  cv::Mat Render(const CameraRays& rays, const Rigid3d& cam_from_world) const;
+
+  // Backscatter along the unit ray `direction_in_cam` from the camera to `range`.
+  Eigen::Vector3d Backscatter(const Eigen::Vector3d& direction_in_cam, double range) const;
+  // alpha at a point in the camera frame (the TrueLut formula above).
+  Eigen::Vector3d SignalFactor(const Eigen::Vector3d& point_in_cam) const;
+  // The LUT a perfect calibration should find for this rig and water on `grid`.
+  FrustumLut TrueLut(const Camera& camera, const FrustumLutGrid& grid) const;
+
+ private:
+  // Irradiance-like term of light l at a point: I f / d^2 exp(-c d) (no cosine).
+  Eigen::Vector3d LightTerm(const Light& light, const Eigen::Vector3d& point_in_cam, Eigen::Vector3d* to_light) const;
+
+  const Mesh& mesh_;
+  LightRig rig_;
+  Water water_;
+  const SurfaceAlbedo& albedo_;
+  SimulatorOptions options_;
+  RaycastScene scene_;
+};
+
+}  // namespace lutex

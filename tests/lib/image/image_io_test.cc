@@ -1,0 +1,55 @@
+#include "lib/image/image_io.h"
+
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "tests/support/temp_dir.h"
+
+namespace lutex {
+namespace {
+
+TEST(ImageIo, SrgbTransferMatchesTheStandard) {
+  EXPECT_NEAR(SrgbToLinear(0.5), 0.214041, 1e-6);  // IEC 61966-2-1
+  EXPECT_NEAR(LinearToSrgb(0.0031308), 0.04045, 1e-5);
+  for (double v = 0.0; v <= 1.0; v += 0.01) EXPECT_NEAR(SrgbToLinear(LinearToSrgb(v)), v, 1e-12);
+}
+
+cv::Mat Ramp() {
+  cv::Mat image(4, 256, CV_32FC3);
+  for (int col = 0; col < 256; ++col) {
+    for (int row = 0; row < 4; ++row) {
+      const float v = static_cast<float>(col) / 255.0f;
+      image.at<cv::Vec3f>(row, col) = cv::Vec3f(v, 0.5f * v, 1.0f - v);
+    }
+  }
+  return image;
+}
+
+// 16-bit linear keeps values to half a code (1/131070); 8-bit sRGB to half an sRGB code, which is at
+// most 0.5/255 * dlinear/dsrgb <= 0.0054 in linear terms (at the bright end).
+TEST(ImageIo, EncodingRoundTrips) {
+  testing::TempDir dir;
+  const cv::Mat ramp = Ramp();
+  WriteLinearImage(ramp, dir.path() / "a.png", ImageEncoding::kLinear16);
+  EXPECT_LT(cv::norm(ReadLinearImage(dir.path() / "a.png", ImageEncoding::kLinear16), ramp, cv::NORM_INF), 1.0 / 131070 + 1e-7);
+  WriteLinearImage(ramp, dir.path() / "b.png", ImageEncoding::kSrgb8);
+  EXPECT_LT(cv::norm(ReadLinearImage(dir.path() / "b.png", ImageEncoding::kSrgb8), ramp, cv::NORM_INF), 0.0055);
+  // Channel order: red is stored in OpenCV's third channel.
+  const cv::Mat stored = cv::imread((dir.path() / "a.png").string(), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(stored.at<cv::Vec3w>(0, 255)[2], 65535);
+  EXPECT_EQ(stored.at<cv::Vec3w>(0, 255)[0], 0);
+}
+
+TEST(ImageIo, WrongEncodingAndMissingFilesAreErrors) {
+  testing::TempDir dir;
+  WriteLinearImage(Ramp(), dir.path() / "eight.png", ImageEncoding::kSrgb8);
+  EXPECT_THROW(ReadLinearImage(dir.path() / "eight.png", ImageEncoding::kLinear16), std::runtime_error);
+  EXPECT_THROW(ReadLinearImage(dir.path() / "missing.png", ImageEncoding::kSrgb8), std::runtime_error);
+  std::ofstream(dir.path() / "broken.png") << "not a png";
+  EXPECT_THROW(ReadLinearImage(dir.path() / "broken.png", ImageEncoding::kSrgb8), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace lutex
