@@ -7,6 +7,7 @@
 #include <string>
 
 #include "colmap_integration/raycast_command.h"
+#include "colmap_integration/simulate_command.h"
 
 namespace {
 
@@ -18,6 +19,7 @@ struct Command {
 
 const Command kCommands[] = {
     {"raycast", &lutex::RunRaycastCommand, "per-image depth and normal maps of a mesh (COLMAP .bin + previews)"},
+    {"simulate", &lutex::RunSimulateCommand, "render a scene description into a COLMAP workspace with ground truth"},
 };
 
 void PrintUsage(std::ostream& out) {

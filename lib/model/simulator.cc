@@ -9,8 +9,8 @@ namespace lutex {
 
 void SimulatorOptions::Check() const {
   if (backscatter_steps < 1) throw std::invalid_argument("backscatter_steps must be at least 1");
-  if (!(backscatter_scale > 0.0)) throw std::invalid_argument("backscatter_scale must be positive");
   if (!(max_range > 0.0)) throw std::invalid_argument("max_range must be positive");
+  if (!(water_start > 0.0) || water_start >= max_range) throw std::invalid_argument("water_start must be in (0, max_range)");
 }
 
 Simulator::Simulator(const Mesh& mesh, const LightRig& rig, const Water& water, const SurfaceAlbedo& albedo,
@@ -32,27 +32,44 @@ Eigen::Vector3d Simulator::LightTerm(const Light& light, const Eigen::Vector3d& 
   return (light.intensity.array() * transmission * (profile / (distance * distance))).matrix();
 }
 
+Eigen::Array3d Simulator::BackscatterDensity(const Eigen::Vector3d& direction_in_cam, double s) const {
+  const Eigen::Vector3d point = s * direction_in_cam;
+  Eigen::Array3d in_scattered = Eigen::Array3d::Zero();
+  for (const Light& light : rig_.lights) {
+    Eigen::Vector3d to_light;
+    const Eigen::Vector3d term = LightTerm(light, point, &to_light);
+    // Light propagates along -to_light and scatters towards the camera, along -direction.
+    in_scattered += term.array() * HenyeyGreenstein(to_light.dot(direction_in_cam), water_.anisotropy_g);
+  }
+  return in_scattered * water_.scattering.array() * (-water_.Attenuation().array() * s).exp();
+}
+
 Eigen::Vector3d Simulator::Backscatter(const Eigen::Vector3d& direction_in_cam, double range) const {
   if (water_.scattering.isZero()) return Eigen::Vector3d::Zero();
-  const double s0 = options_.backscatter_scale;
-  const double total = std::log1p(range / s0);
-  const double step = total / options_.backscatter_steps;
+  const double start = options_.water_start, s0 = start;
+  if (range <= start) return Eigen::Vector3d::Zero();
+  const double step = std::log1p((range - start) / s0) / options_.backscatter_steps;
   Eigen::Array3d sum = Eigen::Array3d::Zero();
   for (int k = 0; k < options_.backscatter_steps; ++k) {
     const double w = (k + 0.5) * step;
-    const double s = s0 * std::expm1(w);
-    const double ds = s0 * std::exp(w) * step;
-    const Eigen::Vector3d point = s * direction_in_cam;
-    Eigen::Array3d in_scattered = Eigen::Array3d::Zero();
-    for (const Light& light : rig_.lights) {
-      Eigen::Vector3d to_light;
-      const Eigen::Vector3d term = LightTerm(light, point, &to_light);
-      // Light propagates along -to_light and scatters towards the camera, along -direction.
-      in_scattered += term.array() * HenyeyGreenstein(to_light.dot(direction_in_cam), water_.anisotropy_g);
-    }
-    sum += in_scattered * (-water_.Attenuation().array() * s).exp() * ds;
+    sum += BackscatterDensity(direction_in_cam, start + s0 * std::expm1(w)) * s0 * std::exp(w) * step;
   }
-  return (sum * water_.scattering.array()).matrix();
+  return sum.matrix();
+}
+
+BackscatterTable Simulator::MakeBackscatterTable(const CameraRays& rays) const {
+  BackscatterTableOptions table_options;
+  table_options.scale = options_.water_start;
+  // Backscatter changes smoothly with the ray direction: a grid node every ~1.1 degrees is plenty.
+  const double focal = std::min(rays.camera().FocalLengthX(), rays.camera().FocalLengthY());
+  table_options.pixel_stride = std::max(1, static_cast<int>(0.02 * focal));
+  table_options.max_range = options_.max_range;
+  table_options.start = options_.water_start;
+  table_options.num_threads = options_.num_threads;
+  if (water_.scattering.isZero()) table_options.num_steps = 1;
+  return BackscatterTable(rays.camera(),
+                          [this](const Eigen::Vector3d& direction, double s) { return BackscatterDensity(direction, s); },
+                          table_options);
 }
 
 Eigen::Vector3d Simulator::SignalFactor(const Eigen::Vector3d& point_in_cam) const {
@@ -66,6 +83,11 @@ Eigen::Vector3d Simulator::SignalFactor(const Eigen::Vector3d& point_in_cam) con
 }
 
 cv::Mat Simulator::Render(const CameraRays& rays, const Rigid3d& cam_from_world) const {
+  return Render(rays, MakeBackscatterTable(rays), cam_from_world);
+}
+
+cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backscatter,
+                          const Rigid3d& cam_from_world) const {
   GeometryMapsOptions map_options;
   map_options.barycentrics = true;
   map_options.num_threads = options_.num_threads;
@@ -81,7 +103,7 @@ cv::Mat Simulator::Render(const CameraRays& rays, const Rigid3d& cam_from_world)
       const float depth = maps.depth.at<float>(row, col);
       Eigen::Vector3d value;
       if (std::isnan(depth)) {
-        value = Backscatter(direction, options_.max_range);
+        value = backscatter.Lookup(col + 0.5, row + 0.5, options_.max_range);
       } else {
         const double range = depth / direction.z();
         const Eigen::Vector3d point = range * direction;
@@ -112,13 +134,34 @@ cv::Mat Simulator::Render(const CameraRays& rays, const Rigid3d& cam_from_world)
           irradiance += term.array() * cos_incidence;
         }
         const Eigen::Array3d to_camera = (-water_.Attenuation().array() * range).exp();
-        value = (irradiance * to_camera * albedo.array() / M_PI).matrix() + Backscatter(direction, range);
+        value = (irradiance * to_camera * albedo.array() / M_PI).matrix() + backscatter.Lookup(col + 0.5, row + 0.5, range);
       }
       radiance.at<cv::Vec3f>(row, col) =
           cv::Vec3f(static_cast<float>(value.x()), static_cast<float>(value.y()), static_cast<float>(value.z()));
     }
   });
   return radiance;
+}
+
+cv::Mat Simulator::RenderAlbedo(const CameraRays& rays, const Rigid3d& cam_from_world) const {
+  GeometryMapsOptions map_options;
+  map_options.normal = false;
+  map_options.barycentrics = true;
+  map_options.num_threads = options_.num_threads;
+  const GeometryMaps maps = scene_.Render(rays, cam_from_world, map_options);
+  cv::Mat albedo(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(std::nan("")));
+  ParallelFor(static_cast<std::size_t>(rays.height()), options_.num_threads, [&](std::size_t row_index) {
+    const int row = static_cast<int>(row_index);
+    for (int col = 0; col < rays.width(); ++col) {
+      const int face = maps.face_id.at<int>(row, col);
+      if (face < 0) continue;
+      const cv::Vec2f b = maps.barycentrics.at<cv::Vec2f>(row, col);
+      const Eigen::Vector3d value = albedo_.At(mesh_, face, b[0], b[1]);
+      albedo.at<cv::Vec3f>(row, col) =
+          cv::Vec3f(static_cast<float>(value.x()), static_cast<float>(value.y()), static_cast<float>(value.z()));
+    }
+  });
+  return albedo;
 }
 
 FrustumLut Simulator::TrueLut(const Camera& camera, const FrustumLutGrid& grid) const {
