@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The README's first command: installs the Debian packages lutex needs, builds lutex, makes the bundled
-# example (a small synthetic survey) and runs the main job on it. Safe to run again.
+# The README's first command: installs the Debian packages lutex needs, builds lutex, simulates the bundled
+# example (a small dive: two lights in clear water over a synthetic seafloor) and runs lutex on it.
+# Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,5 +10,5 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build --parallel 2
 
 echo
-build/examples/make_example_workspace build/example
-build/lutex raycast --workspace build/example --mesh build/example/seafloor.ply
+build/lutex simulate --scene examples/scenes/clear_two_lights.json --output build/example
+build/lutex raycast --workspace build/example --mesh build/example/scene/mesh.ply

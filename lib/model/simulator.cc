@@ -15,7 +15,8 @@ void SimulatorOptions::Check() const {
 
 Simulator::Simulator(const Mesh& mesh, const LightRig& rig, const Water& water, const SurfaceAlbedo& albedo,
                      const SimulatorOptions& options)
-    : mesh_(mesh), rig_(rig), water_(water), albedo_(albedo), options_(options), scene_(mesh) {
+    : mesh_(mesh), rig_(rig), water_(water), albedo_(albedo), options_(options) {
+  if (!mesh.faces.empty()) scene_ = std::make_unique<RaycastScene>(mesh);
   options_.Check();
   if (rig_.lights.empty()) throw std::invalid_argument("the light rig has no lights");
 }
@@ -57,6 +58,16 @@ Eigen::Vector3d Simulator::Backscatter(const Eigen::Vector3d& direction_in_cam, 
   return sum.matrix();
 }
 
+GeometryMaps Simulator::RenderMaps(const CameraRays& rays, const Rigid3d& cam_from_world,
+                                  const GeometryMapsOptions& options) const {
+  if (scene_) return scene_->Render(rays, cam_from_world, options);
+  // Pure water: nothing is hit anywhere.
+  GeometryMaps maps;
+  maps.depth = cv::Mat(rays.height(), rays.width(), CV_32F, cv::Scalar(std::nan("")));
+  maps.face_id = cv::Mat(rays.height(), rays.width(), CV_32S, cv::Scalar(-1));
+  return maps;
+}
+
 BackscatterTable Simulator::MakeBackscatterTable(const CameraRays& rays) const {
   BackscatterTableOptions table_options;
   table_options.scale = options_.water_start;
@@ -91,7 +102,7 @@ cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backsc
   GeometryMapsOptions map_options;
   map_options.barycentrics = true;
   map_options.num_threads = options_.num_threads;
-  const GeometryMaps maps = scene_.Render(rays, cam_from_world, map_options);
+  const GeometryMaps maps = RenderMaps(rays, cam_from_world, map_options);
   const Rigid3d world_from_cam = cam_from_world.Inverse();
   const Eigen::Matrix3d cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix();
   cv::Mat radiance(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(0));
@@ -128,7 +139,7 @@ cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backsc
           if (cos_incidence <= 0.0 || term.isZero()) continue;
           if (options_.shadows) {
             const Eigen::Vector3d origin = world_from_cam * (point + 1e-5 * (1.0 + range) * normal);
-            const RayHit hit = scene_.Intersect(origin, world_from_cam * light.position_in_cam - origin);
+            const RayHit hit = scene_->Intersect(origin, world_from_cam * light.position_in_cam - origin);
             if (hit.hit && hit.distance < 1.0 - 1e-6) continue;
           }
           irradiance += term.array() * cos_incidence;
@@ -148,7 +159,7 @@ cv::Mat Simulator::RenderAlbedo(const CameraRays& rays, const Rigid3d& cam_from_
   map_options.normal = false;
   map_options.barycentrics = true;
   map_options.num_threads = options_.num_threads;
-  const GeometryMaps maps = scene_.Render(rays, cam_from_world, map_options);
+  const GeometryMaps maps = RenderMaps(rays, cam_from_world, map_options);
   cv::Mat albedo(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(std::nan("")));
   ParallelFor(static_cast<std::size_t>(rays.height()), options_.num_threads, [&](std::size_t row_index) {
     const int row = static_cast<int>(row_index);

@@ -24,6 +24,7 @@
 // error, not a simulator error.
 
 #include <cstdint>
+#include <memory>
 
 #include <opencv2/core.hpp>
 
@@ -63,7 +64,8 @@ struct SimulatorOptions {
 
 class Simulator {
  public:
-  // Keeps references to mesh and albedo: they must outlive the simulator.
+  // Keeps a reference to the mesh (which may be large): it must outlive the simulator. A mesh without
+  // faces renders pure water (backscatter to max_range everywhere).
   Simulator(const Mesh& mesh, const LightRig& rig, const Water& water, const SurfaceAlbedo& albedo,
             const SimulatorOptions& options = {});
 
@@ -89,15 +91,17 @@ class Simulator {
   FrustumLut TrueLut(const Camera& camera, const FrustumLutGrid& grid) const;
 
  private:
+  // The ray caster's maps, or "nothing hit" for a mesh without faces.
+  GeometryMaps RenderMaps(const CameraRays& rays, const Rigid3d& cam_from_world, const GeometryMapsOptions& options) const;
   // Irradiance-like term of light l at a point: I f / d^2 exp(-c d) (no cosine).
   Eigen::Vector3d LightTerm(const Light& light, const Eigen::Vector3d& point_in_cam, Eigen::Vector3d* to_light) const;
 
   const Mesh& mesh_;
   LightRig rig_;
   Water water_;
-  const SurfaceAlbedo& albedo_;
+  SurfaceAlbedo albedo_;
   SimulatorOptions options_;
-  RaycastScene scene_;
+  std::unique_ptr<RaycastScene> scene_;  // null for a mesh without faces
 };
 
 }  // namespace lutex
