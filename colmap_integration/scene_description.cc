@@ -140,7 +140,11 @@ SceneDescription Parse(const json& root, const std::filesystem::path& folder) {
   if (root.contains("albedo")) {
     const json& albedo = root["albedo"];
     if (albedo.is_string()) {
-      if (albedo.get<std::string>() != "vertex_colors") throw DescriptionError("albedo must be \"vertex_colors\" or an object");
+      if (albedo.get<std::string>() == "face_colors") {
+        scene.albedo_kind = SceneDescription::AlbedoKind::kFaceColors;
+      } else if (albedo.get<std::string>() != "vertex_colors") {
+        throw DescriptionError("albedo must be \"vertex_colors\", \"face_colors\" or an object");
+      }
     } else {
       ExpectKeys(albedo, "albedo", {"constant", "texture", "encoding"});
       if (albedo.contains("constant")) {

@@ -7,7 +7,7 @@
 // {
 //   "mesh": "seafloor.ply"  or  {"synthetic": {"size": [10, 8], "cell_size": 0.05, "relief": 0.15,
 //                                              "boulders": 2, "patch_size": 0.4, "seed": 7}},
-//   "albedo": "vertex_colors" | {"constant": [r, g, b]} | {"texture": "albedo.png", "encoding": "linear16"},
+//   "albedo": "vertex_colors" | "face_colors" | {"constant": [r, g, b]} | {"texture": "albedo.png", "encoding": "linear16"},
 //   "camera": {"model": "PINHOLE", "width": 640, "height": 480, "params": [320, 320, 320, 240]},
 //   "survey": {"pattern": "lawnmower", "x": [-3.5, 3.5], "y": [-1.5, 1.5], "lines": 3,
 //              "images_per_line": 8, "altitude": 2.0}
@@ -47,7 +47,7 @@ struct NamedPose {
 struct SceneDescription {
   std::filesystem::path mesh_path;  // empty: synthetic seafloor
   SyntheticSeafloorOptions seafloor;
-  enum class AlbedoKind { kVertexColors, kConstant, kTexture } albedo_kind = AlbedoKind::kVertexColors;
+  enum class AlbedoKind { kVertexColors, kFaceColors, kConstant, kTexture } albedo_kind = AlbedoKind::kVertexColors;
   Eigen::Vector3d constant_albedo = Eigen::Vector3d::Constant(0.5);
   std::filesystem::path texture_path;
   ImageEncoding texture_encoding = ImageEncoding::kLinear16;

@@ -35,6 +35,11 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
       throw std::runtime_error(options.scene.string() + ": albedo is vertex_colors but the mesh has none");
     }
     albedo = SurfaceAlbedo::FromVertexColors(mesh);
+  } else if (scene.albedo_kind == SceneDescription::AlbedoKind::kFaceColors) {
+    if (mesh.face_colors.empty()) {
+      throw std::runtime_error(options.scene.string() + ": albedo is face_colors but the mesh has none");
+    }
+    albedo = SurfaceAlbedo::FromFaceColors(mesh);
   } else if (scene.albedo_kind == SceneDescription::AlbedoKind::kTexture) {
     albedo = SurfaceAlbedo::FromTexture(mesh, ReadLinearImage(scene.texture_path, scene.texture_encoding));
   }

@@ -32,6 +32,9 @@ void Mesh::Check(const std::string& context) const {
   if (!vertex_normals.empty() && vertex_normals.size() != vertices.size()) {
     throw std::runtime_error(context + ": vertex normal count differs from vertex count");
   }
+  if (!face_colors.empty() && face_colors.size() != faces.size()) {
+    throw std::runtime_error(context + ": face colour count differs from face count");
+  }
   if (!corner_texcoords.empty() && corner_texcoords.size() != faces.size()) {
     throw std::runtime_error(context + ": per-corner texture coordinate count differs from face count");
   }
@@ -48,11 +51,13 @@ std::size_t Mesh::RemoveDegenerateFaces() {
     if (repeated || zero_area) continue;
     faces[kept] = face;
     if (!corner_texcoords.empty()) corner_texcoords[kept] = corner_texcoords[f];
+    if (!face_colors.empty()) face_colors[kept] = face_colors[f];
     ++kept;
   }
   const std::size_t removed = faces.size() - kept;
   faces.resize(kept);
   if (!corner_texcoords.empty()) corner_texcoords.resize(kept);
+  if (!face_colors.empty()) face_colors.resize(kept);
   return removed;
 }
 

@@ -23,6 +23,8 @@ struct Mesh {
   std::vector<Eigen::Vector2f> vertex_texcoords;
   // Shading normals (unit), for smooth shading between faces.
   std::vector<Eigen::Vector3f> vertex_normals;
+  // Optional per-face colours (8-bit, usually sRGB), empty or one per face.
+  std::vector<Eigen::Matrix<std::uint8_t, 3, 1>> face_colors;
   // Optional per-face-corner texture coordinates (OBJ-style), empty or 3 per face.
   std::vector<std::array<Eigen::Vector2f, 3>> corner_texcoords;
 

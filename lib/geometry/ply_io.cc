@@ -232,6 +232,8 @@ Mesh ReadPly(std::istream& stream) {
         throw std::runtime_error("PLY faces lack a vertex_indices (or vertex_index) list");
       }
       const int texcoord = element.Find("texcoord");
+      const int red = element.Find("red"), green = element.Find("green"), blue = element.Find("blue");
+      const bool colours = red >= 0 && green >= 0 && blue >= 0;
       for (std::size_t f = 0; f < element.count; ++f) {
         ReadRecord(reader, element, &record);
         const std::vector<double>& corners = record.lists[indices];
@@ -247,6 +249,11 @@ Mesh ReadPly(std::istream& stream) {
             face[c] = static_cast<std::uint32_t>(index);
           }
           mesh.faces.push_back(face);
+          if (colours) {
+            mesh.face_colors.emplace_back(static_cast<std::uint8_t>(std::clamp(record.scalars[red], 0.0, 255.0)),
+                                          static_cast<std::uint8_t>(std::clamp(record.scalars[green], 0.0, 255.0)),
+                                          static_cast<std::uint8_t>(std::clamp(record.scalars[blue], 0.0, 255.0)));
+          }
           if (texcoord >= 0 && record.lists[texcoord].size() == 2 * corners.size()) {
             std::array<Eigen::Vector2f, 3> uv;
             for (int c = 0; c < 3; ++c) {
@@ -272,6 +279,7 @@ void WritePly(const Mesh& mesh, std::ostream& stream) {
   const bool texcoords = !mesh.vertex_texcoords.empty();
   const bool corners = !mesh.corner_texcoords.empty();
   const bool normals = !mesh.vertex_normals.empty();
+  const bool face_colours = !mesh.face_colors.empty();
   stream << "ply\nformat binary_little_endian 1.0\ncomment written by lutex\n"
          << "element vertex " << mesh.vertices.size() << "\n"
          << "property double x\nproperty double y\nproperty double z\n";
@@ -280,6 +288,7 @@ void WritePly(const Mesh& mesh, std::ostream& stream) {
   if (texcoords) stream << "property float s\nproperty float t\n";
   stream << "element face " << mesh.faces.size() << "\nproperty list uchar int vertex_indices\n";
   if (corners) stream << "property list uchar float texcoord\n";
+  if (face_colours) stream << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   stream << "end_header\n";
   const auto put = [&stream](const auto& value) {
     stream.write(reinterpret_cast<const char*>(&value), sizeof(value));
@@ -300,6 +309,7 @@ void WritePly(const Mesh& mesh, std::ostream& stream) {
         put(uv.y());
       }
     }
+    if (face_colours) for (int k = 0; k < 3; ++k) put(mesh.face_colors[f][k]);
   }
 }
 

@@ -5,7 +5,7 @@
 // binary_big_endian; vertex x, y, z of any numeric type; optional red, green, blue (uchar, or float in
 // [0, 1]); optional nx, ny, nz shading normals; optional per-vertex texture coordinates (s/t, u/v or texture_u/texture_v); faces as a list
 // named `vertex_indices` or `vertex_index` (polygons are split into triangle fans); an optional face list
-// `texcoord` of 2 floats per corner (as COLMAP's texturer writes). Other elements and properties are
+// `texcoord` of 2 floats per corner (as COLMAP's texturer writes); optional face red, green, blue. Other elements and properties are
 // skipped. Writing produces binary_little_endian with double positions.
 
 #include <filesystem>

@@ -27,6 +27,17 @@ SurfaceAlbedo SurfaceAlbedo::FromVertexColors(const Mesh& mesh) {
   return result;
 }
 
+SurfaceAlbedo SurfaceAlbedo::FromFaceColors(const Mesh& mesh) {
+  if (mesh.face_colors.empty()) throw std::invalid_argument("the mesh has no face colours");
+  SurfaceAlbedo result;
+  result.kind_ = Kind::kFaceColors;
+  for (const auto& colour : mesh.face_colors) {
+    result.vertex_albedo_.emplace_back(SrgbToLinear(colour[0] / 255.0), SrgbToLinear(colour[1] / 255.0),
+                                       SrgbToLinear(colour[2] / 255.0));
+  }
+  return result;
+}
+
 SurfaceAlbedo SurfaceAlbedo::FromTexture(const Mesh& mesh, const cv::Mat& texture, bool nearest) {
   if (mesh.vertex_texcoords.empty() && mesh.corner_texcoords.empty()) {
     throw std::invalid_argument("the mesh has no texture coordinates");
@@ -44,6 +55,7 @@ Eigen::Vector3d SurfaceAlbedo::At(const Mesh& mesh, int face, double b1, double 
   const Mesh::Face& corners = mesh.faces[face];
   switch (kind_) {
     case Kind::kConstant: return constant_;
+    case Kind::kFaceColors: return vertex_albedo_[face];
     case Kind::kVertexColors:
       return b0 * vertex_albedo_[corners[0]] + b1 * vertex_albedo_[corners[1]] + b2 * vertex_albedo_[corners[2]];
     case Kind::kTexture: {

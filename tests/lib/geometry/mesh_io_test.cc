@@ -64,6 +64,22 @@ TEST(MeshIo, BinaryPlyRoundTripKeepsDoublePrecisionAndAttributes) {
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) EXPECT_EQ(read.faces[f], mesh.faces[f]);
 }
 
+// Face colours (as MeshLab writes them) survive reading, degenerate-face removal and writing.
+TEST(MeshIo, FaceColoursRoundTrip) {
+  testing::TempDir dir;
+  WriteText(dir.path() / "f.ply",
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+            "element face 3\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
+            "property uchar blue\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 200 10 20\n3 0 0 1 1 2 3\n"
+            "3 0 2 3 30 40 250\n");
+  const Mesh mesh = ReadMesh(dir.path() / "f.ply");
+  ASSERT_EQ(mesh.NumFaces(), 2u);  // the middle face is degenerate
+  ASSERT_EQ(mesh.face_colors.size(), 2u);
+  EXPECT_EQ(int(mesh.face_colors[1][2]), 250);
+  WriteMesh(mesh, dir.path() / "g.ply");
+  EXPECT_EQ(ReadMesh(dir.path() / "g.ply").face_colors, mesh.face_colors);
+}
+
 TEST(MeshIo, ReadsObjOffAndStlAndTriangulatesQuads) {
   testing::TempDir dir;
   WriteText(dir.path() / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");

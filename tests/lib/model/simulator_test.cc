@@ -1,6 +1,7 @@
 #include "lib/model/simulator.h"
 
 #include <cmath>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -200,6 +201,23 @@ TEST(Simulator, TrueLutNodesAreTheSignalFactorAndBackscatterAtTheNode) {
   // Water eats red: alpha_red < alpha_blue far away; backscatter grows with depth along a ray.
   EXPECT_LT(lut.node(2, 1, 3).alpha[0], lut.node(2, 1, 3).alpha[2]);
   EXPECT_GT(lut.node(2, 1, 3).beta[2], lut.node(2, 1, 0).beta[2]);
+}
+
+// Face colours are linearised sRGB, constant over each face: the albedo pass of a two-colour floor.
+TEST(Simulator, AlbedoFromFaceColours) {
+  Mesh floor = Floor();
+  for (std::size_t f = 0; f < floor.faces.size(); ++f) {
+    floor.face_colors.emplace_back(f % 2 ? 255 : 128, 0, 0);
+  }
+  const Simulator simulator(floor, PointLightAtCamera(), Water::Air(), SurfaceAlbedo::FromFaceColors(floor));
+  const cv::Mat albedo = simulator.RenderAlbedo(CameraRays(Camera::Pinhole(1, 40, 30, 20, 20)), Above(2.0));
+  std::set<float> reds;
+  for (int row = 0; row < 30; ++row) {
+    for (int col = 0; col < 40; ++col) reds.insert(albedo.at<cv::Vec3f>(row, col)[0]);
+  }
+  EXPECT_EQ(reds.size(), 2u);
+  EXPECT_NEAR(*reds.rbegin(), 1.0f, 1e-6f);
+  EXPECT_NEAR(*reds.begin(), 0.2158605f, 1e-6f);  // sRGB 128 linearised
 }
 
 TEST(Simulator, ResultsDoNotDependOnTheThreadCount) {
