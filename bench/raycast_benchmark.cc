@@ -11,13 +11,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "bench/bench_options.h"
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/raycast/raycast_scene.h"
@@ -25,17 +25,6 @@
 #include "lib/util/parallel_for.h"
 
 namespace {
-
-double Seconds(const std::chrono::steady_clock::time_point& start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-int IntOption(int argc, char** argv, const char* name, int fallback) {
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) return std::atoi(argv[i + 1]);
-  }
-  return fallback;
-}
 
 // The baseline: Embree alone, rays generated inline for a pinhole camera, depth written to a buffer.
 double BareEmbreeSeconds(const lutex::Mesh& mesh, const lutex::Camera& camera, const lutex::Rigid3d& cam_from_world,
@@ -87,7 +76,7 @@ double BareEmbreeSeconds(const lutex::Mesh& mesh, const lutex::Camera& camera, c
       }
     }
   });
-  const double seconds = Seconds(start);
+  const double seconds = lutex::bench::SecondsSince(start);
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);
   return seconds;
@@ -96,11 +85,11 @@ double BareEmbreeSeconds(const lutex::Mesh& mesh, const lutex::Camera& camera, c
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int width = IntOption(argc, argv, "--width", 4000);
-  const int height = IntOption(argc, argv, "--height", 3000);
-  const int cells = IntOption(argc, argv, "--cells", 710);
-  const int repeats = IntOption(argc, argv, "--repeats", 3);
-  const int num_threads = lutex::ResolveNumThreads(IntOption(argc, argv, "--num-threads", 0));
+  const int width = lutex::bench::IntOption(argc, argv, "--width", 4000);
+  const int height = lutex::bench::IntOption(argc, argv, "--height", 3000);
+  const int cells = lutex::bench::IntOption(argc, argv, "--cells", 710);
+  const int repeats = lutex::bench::IntOption(argc, argv, "--repeats", 3);
+  const int num_threads = lutex::ResolveNumThreads(lutex::bench::IntOption(argc, argv, "--num-threads", 0));
 
   const lutex::Mesh mesh = lutex::MakeHeightFieldMesh(
       [](double x, double y) { return 0.2 * std::sin(2.0 * x) * std::cos(1.5 * y); }, -4, 4, -3, 3, cells, cells);
@@ -114,10 +103,10 @@ int main(int argc, char** argv) {
 
   auto start = std::chrono::steady_clock::now();
   const lutex::RaycastScene scene(mesh);
-  std::cout << "BVH build (lutex): " << Seconds(start) << " s\n";
+  std::cout << "BVH build (lutex): " << lutex::bench::SecondsSince(start) << " s\n";
   start = std::chrono::steady_clock::now();
   const lutex::CameraRays camera_rays(camera, num_threads);
-  std::cout << "ray table (once per camera): " << Seconds(start) << " s\n";
+  std::cout << "ray table (once per camera): " << lutex::bench::SecondsSince(start) << " s\n";
 
   double lutex_best = 1e30, bare_best = 1e30;
   std::vector<float> bare_depth;
@@ -126,7 +115,7 @@ int main(int argc, char** argv) {
   for (int r = 0; r < repeats; ++r) {
     start = std::chrono::steady_clock::now();
     const lutex::GeometryMaps maps = scene.Render(camera_rays, cam_from_world, options);
-    lutex_best = std::min(lutex_best, Seconds(start));
+    lutex_best = std::min(lutex_best, lutex::bench::SecondsSince(start));
     bare_best = std::min(bare_best, BareEmbreeSeconds(mesh, camera, cam_from_world, num_threads, &bare_depth));
   }
   std::cout << "lutex Render (depth + normal + face id): " << rays / lutex_best / 1e6 << " M rays/s (" << lutex_best

@@ -6,10 +6,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <cstring>
 #include <iostream>
 
+#include "bench/bench_options.h"
 #include "lib/geometry/look_at.h"
 #include "lib/model/simulator.h"
 #include "lib/model/synthetic_seafloor.h"
@@ -17,23 +16,12 @@
 
 namespace {
 
-double Seconds(const std::chrono::steady_clock::time_point& start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-int IntOption(int argc, char** argv, const char* name, int fallback) {
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) return std::atoi(argv[i + 1]);
-  }
-  return fallback;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace lutex;
-  const int repeats = IntOption(argc, argv, "--repeats", 3);
-  const int num_threads = ResolveNumThreads(IntOption(argc, argv, "--num-threads", 0));
+  const int repeats = lutex::bench::IntOption(argc, argv, "--repeats", 3);
+  const int num_threads = ResolveNumThreads(lutex::bench::IntOption(argc, argv, "--num-threads", 0));
   const Mesh seafloor = MakeSyntheticSeafloor(SyntheticSeafloorOptions());
   LightRig rig;
   for (double x : {-0.4, 0.4}) {
@@ -60,7 +48,7 @@ int main(int argc, char** argv) {
 
   auto start = std::chrono::steady_clock::now();
   const BackscatterTable table = simulator.MakeBackscatterTable(rays);
-  const double table_seconds = Seconds(start);
+  const double table_seconds = lutex::bench::SecondsSince(start);
   double frame = 1e30, raycast = 1e30, lut = 1e30;
   FrustumLutGrid grid;
   grid.image_width = 640;
@@ -68,13 +56,13 @@ int main(int argc, char** argv) {
   for (int r = 0; r < repeats; ++r) {
     start = std::chrono::steady_clock::now();
     const cv::Mat image = simulator.Render(rays, table, cam_from_world);
-    frame = std::min(frame, Seconds(start));
+    frame = std::min(frame, lutex::bench::SecondsSince(start));
     start = std::chrono::steady_clock::now();
     const GeometryMaps maps = scene.Render(rays, cam_from_world, map_options);
-    raycast = std::min(raycast, Seconds(start));
+    raycast = std::min(raycast, lutex::bench::SecondsSince(start));
     start = std::chrono::steady_clock::now();
     const FrustumLut true_lut = simulator.TrueLut(camera, grid);
-    lut = std::min(lut, Seconds(start));
+    lut = std::min(lut, lutex::bench::SecondsSince(start));
   }
   std::cout << "mesh " << seafloor.NumFaces() << " faces, 640x480, 2 spot lights, clear water, " << num_threads
             << " threads, best of " << repeats << "\n"

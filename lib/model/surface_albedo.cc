@@ -9,6 +9,18 @@
 #include "lib/image/image_io.h"
 
 namespace lutex {
+namespace {
+
+std::vector<Eigen::Vector3d> Linearised(const std::vector<Eigen::Matrix<std::uint8_t, 3, 1>>& srgb8) {
+  std::vector<Eigen::Vector3d> linear;
+  linear.reserve(srgb8.size());
+  for (const auto& colour : srgb8) {
+    linear.emplace_back(SrgbToLinear(colour[0] / 255.0), SrgbToLinear(colour[1] / 255.0), SrgbToLinear(colour[2] / 255.0));
+  }
+  return linear;
+}
+
+}  // namespace
 
 SurfaceAlbedo SurfaceAlbedo::Constant(const Eigen::Vector3d& albedo) {
   SurfaceAlbedo result;
@@ -20,10 +32,7 @@ SurfaceAlbedo SurfaceAlbedo::FromVertexColors(const Mesh& mesh) {
   if (mesh.vertex_colors.empty()) throw std::invalid_argument("the mesh has no vertex colours");
   SurfaceAlbedo result;
   result.kind_ = Kind::kVertexColors;
-  for (const auto& colour : mesh.vertex_colors) {
-    result.vertex_albedo_.emplace_back(SrgbToLinear(colour[0] / 255.0), SrgbToLinear(colour[1] / 255.0),
-                                       SrgbToLinear(colour[2] / 255.0));
-  }
+  result.vertex_albedo_ = Linearised(mesh.vertex_colors);
   return result;
 }
 
@@ -31,10 +40,7 @@ SurfaceAlbedo SurfaceAlbedo::FromFaceColors(const Mesh& mesh) {
   if (mesh.face_colors.empty()) throw std::invalid_argument("the mesh has no face colours");
   SurfaceAlbedo result;
   result.kind_ = Kind::kFaceColors;
-  for (const auto& colour : mesh.face_colors) {
-    result.vertex_albedo_.emplace_back(SrgbToLinear(colour[0] / 255.0), SrgbToLinear(colour[1] / 255.0),
-                                       SrgbToLinear(colour[2] / 255.0));
-  }
+  result.vertex_albedo_ = Linearised(mesh.face_colors);
   return result;
 }
 
