@@ -220,6 +220,24 @@ TEST(Simulator, AlbedoFromFaceColours) {
   EXPECT_NEAR(*reds.begin(), 0.2158605f, 1e-6f);  // sRGB 128 linearised
 }
 
+// A 2 x 2 texture on a floor whose UVs span it: texture row 0 is v = 1 (the +y side), nearest texels.
+// Seen from above with image "down" = world -y, the top-left of the image is the (-x, +y) corner:
+// texel (row 0, col 0).
+TEST(Simulator, AlbedoFromTextureFollowsTheUvConvention) {
+  const Mesh floor = MakeHeightFieldMesh([](double, double) { return 0.0; }, -1, 1, -1, 1, 4, 4);
+  cv::Mat texture(2, 2, CV_32FC3);
+  texture.at<cv::Vec3f>(0, 0) = cv::Vec3f(1, 0, 0);  // top-left: +y, -x
+  texture.at<cv::Vec3f>(0, 1) = cv::Vec3f(0, 1, 0);
+  texture.at<cv::Vec3f>(1, 0) = cv::Vec3f(0, 0, 1);
+  texture.at<cv::Vec3f>(1, 1) = cv::Vec3f(1, 1, 1);
+  const Simulator simulator(floor, PointLightAtCamera(), Water::Air(), SurfaceAlbedo::FromTexture(floor, texture));
+  const cv::Mat albedo = simulator.RenderAlbedo(CameraRays(Camera::Pinhole(1, 40, 40, 40, 40)), Above(2.0));
+  EXPECT_EQ(albedo.at<cv::Vec3f>(10, 10), cv::Vec3f(1, 0, 0));
+  EXPECT_EQ(albedo.at<cv::Vec3f>(10, 30), cv::Vec3f(0, 1, 0));
+  EXPECT_EQ(albedo.at<cv::Vec3f>(30, 10), cv::Vec3f(0, 0, 1));
+  EXPECT_EQ(albedo.at<cv::Vec3f>(30, 30), cv::Vec3f(1, 1, 1));
+}
+
 TEST(Simulator, ResultsDoNotDependOnTheThreadCount) {
   const Mesh floor = MakeHeightFieldMesh([](double x, double y) { return 0.2 * std::sin(3 * x + y); }, -5, 5, -5, 5, 50, 50);
   const SurfaceAlbedo albedo = SurfaceAlbedo::Constant(Eigen::Vector3d::Constant(0.5));
