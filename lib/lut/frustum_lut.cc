@@ -53,7 +53,8 @@ double FrustumLutGrid::SlabCoordinate(double z) const {
 
 bool FrustumLutGrid::operator==(const FrustumLutGrid& other) const {
   return nx == other.nx && ny == other.ny && nz == other.nz && z_near == other.z_near && z_far == other.z_far &&
-         spacing == other.spacing && image_width == other.image_width && image_height == other.image_height;
+         spacing == other.spacing && alpha_interpolation == other.alpha_interpolation &&
+         image_width == other.image_width && image_height == other.image_height;
 }
 
 FrustumLut::FrustumLut(const FrustumLutGrid& grid) : grid_(grid) {
@@ -71,6 +72,9 @@ NodeWeights FrustumLut::Weights(double u, double v, double z) const {
   Split(u / grid_.image_width * grid_.nx, grid_.NodesX(), &i0, &fx);
   Split(v / grid_.image_height * grid_.ny, grid_.NodesY(), &j0, &fy);
   Split(grid_.SlabCoordinate(z), grid_.nz, &k0, &fz);
+  // Depth at which alpha * z^2 is divided back, clamped like the lookup itself (one slab: its depth).
+  const double clamped_z = grid_.nz == 1 ? grid_.z_near : std::clamp(z, grid_.z_near, grid_.z_far);
+  const bool inverse_square = grid_.alpha_interpolation == AlphaInterpolation::kInverseSquare;
   NodeWeights weights;
   for (int corner = 0; corner < 8; ++corner) {
     const int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
@@ -80,6 +84,8 @@ NodeWeights FrustumLut::Weights(double u, double v, double z) const {
                                       std::min(k0 + dk, grid_.nz - 1));
     weights.node[weights.count] = index;
     weights.weight[weights.count] = w;
+    const double slab_z = grid_.SlabDepth(std::min(k0 + dk, grid_.nz - 1));
+    weights.alpha_weight[weights.count] = inverse_square ? w * (slab_z * slab_z) / (clamped_z * clamped_z) : w;
     ++weights.count;
   }
   return weights;
@@ -90,7 +96,7 @@ LutNode FrustumLut::Lookup(double u, double v, double z) const {
   LutNode result;
   for (int n = 0; n < weights.count; ++n) {
     const LutNode& node_value = nodes_[weights.node[n]];
-    result.alpha += weights.weight[n] * node_value.alpha;
+    result.alpha += weights.alpha_weight[n] * node_value.alpha;
     result.beta += weights.weight[n] * node_value.beta;
   }
   return result;

@@ -11,6 +11,15 @@
 // z_{nz-1} = z_far, spaced uniformly in z or in 1/z. Lookups are trilinear, clamped at the borders
 // (outside the image or depth range, the nearest border value). Corner-aligned nodes make coarse-to-fine
 // levels nest: every node of a 4 x 3 grid is a node of the 20 x 15 and 40 x 30 grids.
+//
+// Alpha interpolation. The signal factor falls off roughly as 1 / z^2 (inverse-square law from lights
+// near the camera), which trilinear interpolation between 10 slabs follows poorly: restoring with a
+// perfect 40 x 30 x 10 LUT then errs by 2 % of full scale (median; 0.13 % with 30 slabs). With
+// AlphaInterpolation::kInverseSquare (the default) lookups interpolate alpha * z^2 and divide by z^2,
+// which removes the fall-off: the same perfect 10-slab LUT then errs by 0.44 % (95th percentile 0.83 %
+// instead of 6.1 %). Nodes still store the physical
+// alpha at the node, and lookups stay linear in the node values (weights w_i z_i^2 / z^2), so the
+// calibration is unchanged. Beta (accumulated backscatter) is always trilinear.
 
 #include <array>
 #include <string>
@@ -21,6 +30,7 @@
 namespace lutex {
 
 enum class DepthSpacing { kUniformZ, kUniformInverseZ };
+enum class AlphaInterpolation { kTrilinear, kInverseSquare };
 
 struct FrustumLutGrid {
   int nx = 40;  // cells across
@@ -29,6 +39,7 @@ struct FrustumLutGrid {
   double z_near = 0.5;
   double z_far = 5.0;
   DepthSpacing spacing = DepthSpacing::kUniformInverseZ;
+  AlphaInterpolation alpha_interpolation = AlphaInterpolation::kInverseSquare;
   // Size of the images the LUT is for; lookups take pixel coordinates in this size.
   int image_width = 0;
   int image_height = 0;
@@ -52,11 +63,13 @@ struct LutNode {
   Eigen::Vector3d beta = Eigen::Vector3d::Zero();
 };
 
-// Up to 8 nodes and trilinear weights (summing to 1) that a lookup combines; weights of nodes merged by
-// border clamping are added. The calibration builds its residuals from these.
+// Up to 8 nodes and their weights in a lookup: beta = sum weight_i beta_i (trilinear, summing to 1),
+// alpha = sum alpha_weight_i alpha_i (equal to weight_i, or weight_i z_i^2 / z^2 for kInverseSquare).
+// The calibration builds its residuals from these.
 struct NodeWeights {
   std::array<int, 8> node{};
   std::array<double, 8> weight{};
+  std::array<double, 8> alpha_weight{};
   int count = 0;
 };
 

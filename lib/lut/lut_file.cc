@@ -45,6 +45,14 @@ FrustumLut ReadLut(std::istream& stream) {
     } else {
       throw std::runtime_error("unknown depth_spacing '" + spacing + "' (expected z or inverse_z)");
     }
+    const std::string interpolation = header.at("alpha_interpolation").get<std::string>();
+    if (interpolation == "trilinear") {
+      grid.alpha_interpolation = AlphaInterpolation::kTrilinear;
+    } else if (interpolation == "inverse_square") {
+      grid.alpha_interpolation = AlphaInterpolation::kInverseSquare;
+    } else {
+      throw std::runtime_error("unknown alpha_interpolation '" + interpolation + "' (expected trilinear or inverse_square)");
+    }
     grid.image_width = header.at("image_width").get<int>();
     grid.image_height = header.at("image_height").get<int>();
     if (header.at("value_type").get<std::string>() != "float64 little-endian") {
@@ -90,6 +98,8 @@ void WriteLut(const FrustumLut& lut, std::ostream& stream) {
   header["z_near"] = grid.z_near;
   header["z_far"] = grid.z_far;
   header["depth_spacing"] = grid.spacing == DepthSpacing::kUniformZ ? "z" : "inverse_z";
+  header["alpha_interpolation"] =
+      grid.alpha_interpolation == AlphaInterpolation::kTrilinear ? "trilinear" : "inverse_square";
   header["image_width"] = grid.image_width;
   header["image_height"] = grid.image_height;
   header["node_layout"] = kLayout;

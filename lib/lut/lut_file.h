@@ -5,13 +5,13 @@
 //   line 1: "LUTEX-LUT 1"
 //   line 2: a one-line JSON header, e.g.
 //     {"format":"lutex-lut","version":1,"nx":40,"ny":30,"nz":10,"z_near":0.5,"z_far":5.0,
-//      "depth_spacing":"inverse_z","image_width":4000,"image_height":3000,
+//      "depth_spacing":"inverse_z","alpha_interpolation":"inverse_square","image_width":4000,"image_height":3000,
 //      "node_layout":"slab k, then row j, then column i; per node alpha_r alpha_g alpha_b beta_r beta_g beta_b",
 //      "value_type":"float64 little-endian","num_values":...}
 //   then exactly num_values = (nx + 1) (ny + 1) nz 6 binary float64 values, nothing after them.
 //
-// Node (i, j, k) sits at pixel (i / nx * image_width, j / ny * image_height) and planar depth slab k (see
-// frustum_lut.h). Readers reject other versions, wrong value counts, truncation and non-finite values.
+// Node (i, j, k) sits at pixel (i / nx * image_width, j / ny * image_height) and planar depth slab k;
+// alpha_interpolation is "trilinear" or "inverse_square" (alpha * z^2 interpolated; see frustum_lut.h). Readers reject other versions, wrong value counts, truncation and non-finite values.
 
 #include <filesystem>
 #include <istream>

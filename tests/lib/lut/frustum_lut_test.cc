@@ -54,7 +54,9 @@ FrustumLut FilledLinear(const FrustumLutGrid& grid) {
 TEST(FrustumLut, ReproducesLinearFunctionsAnywhere) {
   std::mt19937 random(7);
   for (DepthSpacing spacing : {DepthSpacing::kUniformZ, DepthSpacing::kUniformInverseZ}) {
-    const FrustumLut lut = FilledLinear(Grid(8, 6, 5, spacing));
+    FrustumLutGrid grid = Grid(8, 6, 5, spacing);
+    grid.alpha_interpolation = AlphaInterpolation::kTrilinear;
+    const FrustumLut lut = FilledLinear(grid);
     std::uniform_real_distribution<double> u(0, 640), v(0, 480), z(0.5, 3.0);
     for (int n = 0; n < 500; ++n) {
       const double pu = u(random), pv = v(random), pz = z(random);
@@ -63,6 +65,30 @@ TEST(FrustumLut, ReproducesLinearFunctionsAnywhere) {
       ASSERT_LT((actual.alpha - expected.alpha).norm(), 1e-12);
       ASSERT_LT((actual.beta - expected.beta).norm(), 1e-12);
     }
+  }
+}
+
+// With inverse-square alpha interpolation, alpha = L(u, v, 1/z) / z^2 is reproduced exactly (L linear),
+// which is what makes 10 slabs enough for light that falls off with the square of the distance.
+TEST(FrustumLut, InverseSquareAlphaReproducesLinearOverZSquared) {
+  const FrustumLut lut = [] {
+    FrustumLut filled = FilledLinear(Grid(8, 6, 5, DepthSpacing::kUniformInverseZ));
+    for (int k = 0; k < filled.grid().nz; ++k) {
+      const double z = filled.grid().SlabDepth(k);
+      for (int j = 0; j < filled.grid().NodesY(); ++j) {
+        for (int i = 0; i < filled.grid().NodesX(); ++i) filled.node(i, j, k).alpha /= z * z;
+      }
+    }
+    return filled;
+  }();
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> u(0, 640), v(0, 480), z(0.5, 3.0);
+  for (int n = 0; n < 500; ++n) {
+    const double pu = u(random), pv = v(random), pz = z(random);
+    const LutNode expected = LinearFunction(pu, pv, pz, DepthSpacing::kUniformInverseZ);
+    const LutNode actual = lut.Lookup(pu, pv, pz);
+    ASSERT_LT((actual.alpha - expected.alpha / (pz * pz)).norm(), 1e-12);
+    ASSERT_LT((actual.beta - expected.beta).norm(), 1e-12);
   }
 }
 
