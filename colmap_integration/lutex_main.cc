@@ -7,6 +7,7 @@
 #include <string>
 
 #include "colmap_integration/raycast_command.h"
+#include "colmap_integration/restore_command.h"
 #include "colmap_integration/simulate_command.h"
 
 namespace {
@@ -19,6 +20,7 @@ struct Command {
 
 const Command kCommands[] = {
     {"raycast", &lutex::RunRaycastCommand, "per-image depth and normal maps of a mesh (COLMAP .bin + previews)"},
+    {"restore", &lutex::RunRestoreCommand, "restore images to albedo with a calibrated LUT, with confidence maps"},
     {"simulate", &lutex::RunSimulateCommand, "render a scene description into a COLMAP workspace with ground truth"},
 };
 

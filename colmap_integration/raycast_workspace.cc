@@ -1,14 +1,14 @@
 #include "colmap_integration/raycast_workspace.h"
 
 #include <chrono>
-#include <map>
+#include <mutex>
 #include <stdexcept>
-#include <tuple>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_integration/colmap_array.h"
+#include "colmap_integration/images_by_camera.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/workspace.h"
 #include "lib/geometry/mesh_io.h"
@@ -16,17 +16,12 @@
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/atomic_output.h"
 #include "lib/util/logging.h"
-#include "lib/util/parallel_for.h"
-#include "lib/util/progress.h"
 
 namespace lutex {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// Cameras with the same model, size and parameters share one ray table.
-using CameraKey = std::tuple<int, std::uint64_t, std::uint64_t, std::vector<double>>;
 
 void WritePng(const cv::Mat& picture, const fs::path& path) {
   AtomicOutputFile output(path);
@@ -57,39 +52,24 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
   summary.output = options.output.empty() ? workspace.OutputDir() / "raycast" : options.output;
   summary.num_faces = mesh.NumFaces();
 
-  std::map<CameraKey, std::vector<const Image*>> images_by_camera;
-  for (const auto& entry : model.images) {
-    const Camera& camera = model.cameras.at(entry.second.camera_id);
-    images_by_camera[CameraKey(static_cast<int>(camera.model_id), camera.width, camera.height, camera.params)]
-        .push_back(&entry.second);
-  }
-
-  ProgressReporter progress("raycast", model.images.size(), "images");
   std::vector<double> hit_fractions;
-  for (const auto& [key, images] : images_by_camera) {
-    const CameraRays rays(model.cameras.at(images.front()->camera_id), options.num_threads);
-    std::vector<double> group_fractions(images.size());
-    ParallelFor(images.size(), options.num_threads, [&](std::size_t i) {
-      const Image& image = *images[i];
-      GeometryMapsOptions map_options;
-      map_options.face_id = false;
-      map_options.num_threads = 1;  // parallel over images instead
-      const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
-      group_fractions[i] = static_cast<double>(cv::countNonZero(maps.depth == maps.depth)) /
-                           static_cast<double>(maps.depth.total());
-      WriteColmapArray(ReplaceNanWithZero(maps.depth),
-                       summary.output / "depth_maps" / (image.name + ".geometric.bin"));
-      WriteColmapArray(ReplaceNanWithZero(maps.normal),
-                       summary.output / "normal_maps" / (image.name + ".geometric.bin"));
-      if (options.write_previews) {
-        WritePng(DepthPreview(maps.depth), summary.output / "previews" / (image.name + ".depth.png"));
-        WritePng(NormalPreview(maps.normal), summary.output / "previews" / (image.name + ".normal.png"));
-      }
-      progress.Advance();
-    });
-    hit_fractions.insert(hit_fractions.end(), group_fractions.begin(), group_fractions.end());
-  }
-  progress.Finish();
+  std::mutex hit_fractions_mutex;
+  ForEachImageWithRays(model, options.num_threads, "raycast", [&](const Image& image, const CameraRays& rays) {
+    GeometryMapsOptions map_options;
+    map_options.face_id = false;
+    map_options.num_threads = 1;  // parallel over images instead
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
+    const double hit_fraction =
+        static_cast<double>(cv::countNonZero(maps.depth == maps.depth)) / static_cast<double>(maps.depth.total());
+    WriteColmapArray(ReplaceNanWithZero(maps.depth), summary.output / "depth_maps" / (image.name + ".geometric.bin"));
+    WriteColmapArray(ReplaceNanWithZero(maps.normal), summary.output / "normal_maps" / (image.name + ".geometric.bin"));
+    if (options.write_previews) {
+      WritePng(DepthPreview(maps.depth), summary.output / "previews" / (image.name + ".depth.png"));
+      WritePng(NormalPreview(maps.normal), summary.output / "previews" / (image.name + ".normal.png"));
+    }
+    std::lock_guard<std::mutex> lock(hit_fractions_mutex);
+    hit_fractions.push_back(hit_fraction);
+  });
 
   summary.num_images = hit_fractions.size();
   for (double fraction : hit_fractions) summary.mean_hit_fraction += fraction;

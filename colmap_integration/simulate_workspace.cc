@@ -77,7 +77,12 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
   progress.Finish();
   WriteSparseModel(model, root / "sparse" / "0", scene.sparse_format);
   WriteMesh(mesh, root / "scene" / "mesh.ply");
-  const FrustumLut true_lut = simulator.TrueLut(scene.camera, scene.lut_grid);
+  // The true LUT describes the images, so it includes the sensor's exposure (noise and blur average out).
+  FrustumLut true_lut = simulator.TrueLut(scene.camera, scene.lut_grid);
+  for (int n = 0; n < true_lut.grid().NumNodes(); ++n) {
+    true_lut.node(n).alpha *= scene.sensor.exposure;
+    true_lut.node(n).beta *= scene.sensor.exposure;
+  }
   WriteLut(true_lut, root / "ground_truth" / "true.lut");
   WriteLutSlabImages(true_lut, root / "ground_truth" / "true_lut_slabs");
 

@@ -8,7 +8,8 @@
 //   W/scene/mesh.ply                 the rendered mesh (with its vertex colours, if any)
 //   W/ground_truth/albedo/NAME       true albedo through each pixel centre (16-bit linear PNG, 0 = none)
 //   W/ground_truth/depth/NAME.bin    planar depth (COLMAP array, 0 = none)
-//   W/ground_truth/true.lut          the LUT a perfect calibration should find (lut_file.h)
+//   W/ground_truth/true.lut          the LUT a perfect calibration of these images finds (lut_file.h),
+//                                    in image units (the sensor's exposure included)
 //   W/ground_truth/true_lut_slabs/   its slabs as pictures
 
 #include <cstddef>

@@ -1,6 +1,8 @@
 #include "lib/image/image_io.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -20,6 +22,22 @@ const float* SrgbDecodeTable() {
     return values;
   }();
   return table;
+}
+
+// Encoding linear values to 8-bit sRGB exactly without a pow per value: code k is the largest k whose
+// threshold SrgbToLinear((k - 0.5) / 255) the value reaches (the rounding points of the encoding).
+const std::vector<float>& SrgbEncodeThresholds() {
+  static const std::vector<float> thresholds = [] {
+    std::vector<float> values;
+    for (int k = 1; k < 256; ++k) values.push_back(static_cast<float>(SrgbToLinear((k - 0.5) / 255.0)));
+    return values;
+  }();
+  return thresholds;
+}
+
+uchar EncodeSrgb8(float linear) {
+  const std::vector<float>& thresholds = SrgbEncodeThresholds();
+  return static_cast<uchar>(std::upper_bound(thresholds.begin(), thresholds.end(), linear) - thresholds.begin());
 }
 
 }  // namespace
@@ -97,10 +115,7 @@ cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding) {
     const auto* in = bgr.ptr<cv::Vec3f>(row);
     auto* out = encoded.ptr<cv::Vec3b>(row);
     for (int col = 0; col < bgr.cols; ++col) {
-      for (int c = 0; c < 3; ++c) {
-        const double clamped = std::min(1.0, std::max(0.0, static_cast<double>(in[col][c])));
-        out[col][c] = static_cast<uchar>(std::lround(255.0 * LinearToSrgb(clamped)));
-      }
+      for (int c = 0; c < 3; ++c) out[col][c] = EncodeSrgb8(in[col][c]);
     }
   }
   return encoded;

@@ -60,6 +60,7 @@ bool FrustumLutGrid::operator==(const FrustumLutGrid& other) const {
 FrustumLut::FrustumLut(const FrustumLutGrid& grid) : grid_(grid) {
   grid_.Check();
   nodes_.resize(static_cast<std::size_t>(grid_.NumNodes()));
+  for (int k = 0; k < grid_.nz; ++k) slab_depth_squared_.push_back(grid_.SlabDepth(k) * grid_.SlabDepth(k));
 }
 
 Eigen::Vector2d FrustumLut::NodePixel(int i, int j) const {
@@ -74,7 +75,8 @@ NodeWeights FrustumLut::Weights(double u, double v, double z) const {
   Split(grid_.SlabCoordinate(z), grid_.nz, &k0, &fz);
   // Depth at which alpha * z^2 is divided back, clamped like the lookup itself (one slab: its depth).
   const double clamped_z = grid_.nz == 1 ? grid_.z_near : std::clamp(z, grid_.z_near, grid_.z_far);
-  const bool inverse_square = grid_.alpha_interpolation == AlphaInterpolation::kInverseSquare;
+  const double inverse_clamped_z2 =
+      grid_.alpha_interpolation == AlphaInterpolation::kInverseSquare ? 1.0 / (clamped_z * clamped_z) : 0.0;
   NodeWeights weights;
   for (int corner = 0; corner < 8; ++corner) {
     const int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
@@ -84,8 +86,8 @@ NodeWeights FrustumLut::Weights(double u, double v, double z) const {
                                       std::min(k0 + dk, grid_.nz - 1));
     weights.node[weights.count] = index;
     weights.weight[weights.count] = w;
-    const double slab_z = grid_.SlabDepth(std::min(k0 + dk, grid_.nz - 1));
-    weights.alpha_weight[weights.count] = inverse_square ? w * (slab_z * slab_z) / (clamped_z * clamped_z) : w;
+    weights.alpha_weight[weights.count] =
+        inverse_clamped_z2 > 0.0 ? w * slab_depth_squared_[std::min(k0 + dk, grid_.nz - 1)] * inverse_clamped_z2 : w;
     ++weights.count;
   }
   return weights;

@@ -99,6 +99,7 @@ class FrustumLut {
  private:
   FrustumLutGrid grid_;
   std::vector<LutNode> nodes_;
+  std::vector<double> slab_depth_squared_;  // z_k^2, for inverse-square alpha weights
 };
 
 }  // namespace lutex

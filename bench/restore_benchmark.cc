@@ -1,0 +1,73 @@
+// Restoration speed against plain I/O, measured in the same run on the same images: a simulated
+// workspace of N 8-bit sRGB PNG images (default 24 of 1280 x 960), then (a) decode + encode every image
+// (read, linearise, encode, write: what any tool that touches the images pays) and (b) `lutex restore`
+// (read, ray-cast, look up, restore, write image and confidence map). Reports both and the ratio. Not a
+// test.
+//
+//   restore_benchmark [--images 24] [--width 1280] [--num-threads 0]
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "bench/bench_options.h"
+#include "colmap_integration/restore_workspace.h"
+#include "colmap_integration/simulate_workspace.h"
+#include "colmap_integration/sparse_model_io.h"
+#include "lib/image/image_io.h"
+#include "lib/util/parallel_for.h"
+
+int main(int argc, char** argv) {
+  using namespace lutex;
+  namespace fs = std::filesystem;
+  const int images = bench::IntOption(argc, argv, "--images", 24);
+  const int width = bench::IntOption(argc, argv, "--width", 1280);
+  const int height = width * 3 / 4;
+  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  const fs::path root = fs::temp_directory_path() / "lutex_restore_benchmark";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  std::ofstream(root / "scene.json")
+      << R"({"mesh": {"synthetic": {"size": [12, 10]}}, "camera": {"model": "PINHOLE", "width": )" << width
+      << R"(, "height": )" << height << R"(, "params": [)" << width / 2 << ", " << width / 2 << ", " << width / 2 << ", "
+      << height / 2 << R"(]}, "survey": {"lines": 1, "images_per_line": )" << images
+      << R"(, "x": [-4, 4], "y": [0, 0], "altitude": 2},
+         "lights": [{"position": [-0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"},
+                    {"position": [0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"}],
+         "water": {"absorption": [0.35, 0.05, 0.02], "scattering": [0.04, 0.045, 0.05], "g": 0.88},
+         "sensor": {"exposure": 4, "shot_noise": 0.01, "read_noise": 0.002}})";
+  SimulateOptions simulate;
+  simulate.scene = root / "scene.json";
+  simulate.output = root / "W";
+  simulate.num_threads = num_threads;
+  SimulateWorkspace(simulate);
+
+  const SparseModel model = ReadSparseModel(root / "W" / "sparse" / "0");
+  auto start = std::chrono::steady_clock::now();
+  std::vector<const Image*> list;
+  for (const auto& entry : model.images) list.push_back(&entry.second);
+  ParallelFor(list.size(), num_threads, [&](std::size_t i) {
+    const cv::Mat linear = ReadLinearImage(root / "W" / "images" / list[i]->name, ImageEncoding::kSrgb8);
+    WriteLinearImage(linear, root / "copy" / list[i]->name, ImageEncoding::kSrgb8);
+  });
+  const double plain = bench::SecondsSince(start);
+
+  RestoreOptions restore;
+  restore.workspace = root / "W";
+  restore.mesh = root / "W" / "scene" / "mesh.ply";
+  restore.lut = root / "W" / "ground_truth" / "true.lut";
+  restore.num_threads = num_threads;
+  start = std::chrono::steady_clock::now();
+  RestoreWorkspace(restore);
+  const double restored = bench::SecondsSince(start);
+
+  std::cout << images << " images of " << width << "x" << height << ", " << num_threads << " threads\n"
+            << "decode + encode: " << plain << " s (" << plain / images << " s per image)\n"
+            << "lutex restore (incl. reading mesh and LUT, BVH, confidence maps): " << restored << " s ("
+            << restored / images << " s per image)\n"
+            << "ratio restore / plain I/O: " << restored / plain << "\n";
+  fs::remove_all(root);
+  return 0;
+}

@@ -1,0 +1,32 @@
+#include "colmap_integration/images_by_camera.h"
+
+#include <map>
+#include <tuple>
+#include <vector>
+
+#include "lib/util/parallel_for.h"
+#include "lib/util/progress.h"
+
+namespace lutex {
+
+void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::string& progress_label,
+                          const std::function<void(const Image&, const CameraRays&)>& visit) {
+  using CameraKey = std::tuple<int, std::uint64_t, std::uint64_t, std::vector<double>>;
+  std::map<CameraKey, std::vector<const Image*>> images_by_camera;
+  for (const auto& entry : model.images) {
+    const Camera& camera = model.cameras.at(entry.second.camera_id);
+    images_by_camera[CameraKey(static_cast<int>(camera.model_id), camera.width, camera.height, camera.params)]
+        .push_back(&entry.second);
+  }
+  ProgressReporter progress(progress_label, model.images.size(), "images");
+  for (const auto& [key, images] : images_by_camera) {
+    const CameraRays rays(model.cameras.at(images.front()->camera_id), num_threads);
+    ParallelFor(images.size(), num_threads, [&](std::size_t i) {
+      visit(*images[i], rays);
+      progress.Advance();
+    });
+  }
+  progress.Finish();
+}
+
+}  // namespace lutex

@@ -1,0 +1,20 @@
+#pragma once
+
+// Visits every registered image of a sparse model, in parallel, with the ray table of its camera.
+// Images are grouped by camera (cameras with identical model, size and parameters share one group), and
+// one ray table is built per group, so memory holds one table and `num_threads` images at a time,
+// whatever the number of images. Progress is reported per image.
+
+#include <functional>
+#include <string>
+
+#include "colmap_integration/sparse_model.h"
+#include "lib/raycast/camera_rays.h"
+
+namespace lutex {
+
+// Calls visit(image, rays) for every image; throws the first exception any call throws.
+void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::string& progress_label,
+                          const std::function<void(const Image&, const CameraRays&)>& visit);
+
+}  // namespace lutex

@@ -1,0 +1,114 @@
+#include "colmap_integration/restore_workspace.h"
+
+#include <chrono>
+#include <mutex>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "colmap_integration/images_by_camera.h"
+#include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/workspace.h"
+#include "lib/geometry/mesh_io.h"
+#include "lib/lut/lut_file.h"
+#include "lib/raycast/raycast_scene.h"
+#include "lib/util/atomic_output.h"
+#include "lib/util/logging.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Where the restored image goes: same name, but PNG (or EXR) when the encoding needs it.
+fs::path RestoredPath(const fs::path& output, const std::string& name, ImageEncoding encoding) {
+  fs::path path = output / name;
+  const std::string extension = path.extension().string();
+  if (encoding == ImageEncoding::kFloat) {
+    path.replace_extension(".exr");
+  } else if (encoding == ImageEncoding::kLinear16 && extension != ".png" && extension != ".tif" && extension != ".tiff") {
+    path.replace_extension(".png");
+  }
+  return path;
+}
+
+}  // namespace
+
+void RestoreOptions::Check() const {
+  if (workspace.empty()) throw std::invalid_argument("--workspace is required");
+  if (mesh.empty()) throw std::invalid_argument("--mesh is required");
+  if (lut.empty()) throw std::invalid_argument("--lut is required");
+  if (output_encoding != "same") ParseImageEncoding(output_encoding);
+  restoration.Check();
+}
+
+RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  const Workspace workspace = FindWorkspace(options.workspace);
+  const SparseModel model = ReadSparseModel(workspace.sparse_dir);
+  const FrustumLut lut = ReadLut(options.lut);
+  for (const auto& [id, camera] : model.cameras) {
+    if (static_cast<int>(camera.width) != lut.grid().image_width ||
+        static_cast<int>(camera.height) != lut.grid().image_height) {
+      throw std::runtime_error(options.lut.string() + ": the LUT is for " + std::to_string(lut.grid().image_width) + "x" +
+                               std::to_string(lut.grid().image_height) + " images but camera " + std::to_string(id) +
+                               " is " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    }
+  }
+  for (const auto& [id, image] : model.images) {
+    if (!fs::exists(workspace.images_dir / image.name)) {
+      throw std::runtime_error((workspace.images_dir / image.name).string() + ": no such image (image " +
+                               std::to_string(id) + " of the model)");
+    }
+  }
+  const Mesh mesh = ReadMesh(options.mesh);
+  const RaycastScene scene(mesh);
+  const ImageEncoding output_encoding =
+      options.output_encoding == "same" ? options.input_encoding : ParseImageEncoding(options.output_encoding);
+
+  RestoreSummary summary;
+  summary.output = options.output.empty() ? workspace.OutputDir() / "restored" : options.output;
+  double confidence_sum = 0.0;
+  std::size_t surface_pixels = 0;
+  std::mutex summary_mutex;
+  ForEachImageWithRays(model, options.num_threads, "restore", [&](const Image& image, const CameraRays& rays) {
+    const fs::path input = workspace.images_dir / image.name;
+    const cv::Mat observed = ReadLinearImage(input, options.input_encoding);
+    if (observed.cols != rays.width() || observed.rows != rays.height()) {
+      throw std::runtime_error(input.string() + ": the image is " + std::to_string(observed.cols) + "x" +
+                               std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
+                               "x" + std::to_string(rays.height()));
+    }
+    GeometryMapsOptions map_options;
+    map_options.face_id = false;
+    map_options.num_threads = 1;  // parallel over images instead
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
+    const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration);
+    WriteLinearImage(restored.albedo, RestoredPath(summary.output, image.name, output_encoding), output_encoding);
+    fs::path confidence_path = summary.output / "confidence" / image.name;
+    confidence_path.replace_extension(".png");
+    // Confidence is a plain fraction, stored linearly in 8 bits.
+    cv::Mat confidence_bgr;
+    cv::cvtColor(restored.confidence, confidence_bgr, cv::COLOR_RGB2BGR);
+    confidence_bgr.convertTo(confidence_bgr, CV_8UC3, 255.0);
+    AtomicOutputFile confidence_file(confidence_path);
+    if (!cv::imwrite(confidence_file.temporary_path().string(), confidence_bgr)) {
+      throw std::runtime_error(confidence_path.string() + ": could not write the confidence map");
+    }
+    confidence_file.Commit();
+    const int surfaces = cv::countNonZero(maps.depth == maps.depth);
+    const cv::Scalar total = cv::sum(restored.confidence);
+    std::lock_guard<std::mutex> lock(summary_mutex);
+    confidence_sum += total[0] + total[1] + total[2];
+    surface_pixels += static_cast<std::size_t>(surfaces);
+    ++summary.num_images;
+  });
+  summary.mean_confidence = surface_pixels ? confidence_sum / (3.0 * static_cast<double>(surface_pixels)) : 0.0;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace lutex

@@ -1,0 +1,48 @@
+#pragma once
+
+// `lutex restore`: every registered image of a COLMAP workspace restored to albedo with a calibrated LUT,
+// plus a per-channel confidence map (lib/restoration/restorer.h). Images are streamed: each is read,
+// ray-cast, restored and written by one thread, so memory does not grow with the number of images.
+//
+// Output, under `output` (default W/lutex/restored):
+//   NAME                       the restored image, in `output_encoding` (.png when 16-bit or float
+//                              output would not fit the input's extension, e.g. .jpg)
+//   confidence/NAME.png        8-bit RGB confidence, 255 = 1
+// Pixels without a surface are 0 with confidence 0.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include "lib/image/image_io.h"
+#include "lib/restoration/restorer.h"
+
+namespace lutex {
+
+struct RestoreOptions {
+  std::filesystem::path workspace;
+  std::filesystem::path mesh;
+  std::filesystem::path lut;
+  // Empty: W/lutex/restored.
+  std::filesystem::path output;
+  // How the input images are encoded (the default, 8-bit sRGB, is what cameras' JPEGs are).
+  ImageEncoding input_encoding = ImageEncoding::kSrgb8;
+  // "same" (as the input), "srgb8", "linear16" or "float" (EXR).
+  std::string output_encoding = "same";
+  RestorationOptions restoration;
+  int num_threads = 0;
+
+  void Check() const;
+};
+
+struct RestoreSummary {
+  std::filesystem::path output;
+  std::size_t num_images = 0;
+  double mean_confidence = 0.0;  // over pixels with a surface, all channels
+  double seconds = 0.0;
+};
+
+// Reads and validates the model, mesh, LUT and the existence of every image before writing anything.
+RestoreSummary RestoreWorkspace(const RestoreOptions& options);
+
+}  // namespace lutex
