@@ -26,18 +26,34 @@ const float* SrgbDecodeTable() {
 
 // Encoding linear values to 8-bit sRGB exactly without a pow per value: code k is the largest k whose
 // threshold SrgbToLinear((k - 0.5) / 255) the value reaches (the rounding points of the encoding).
-const std::vector<float>& SrgbEncodeThresholds() {
-  static const std::vector<float> thresholds = [] {
-    std::vector<float> values;
-    for (int k = 1; k < 256; ++k) values.push_back(static_cast<float>(SrgbToLinear((k - 0.5) / 255.0)));
+const std::vector<double>& SrgbEncodeThresholds() {
+  static const std::vector<double> thresholds = [] {
+    std::vector<double> values;
+    for (int k = 1; k < 256; ++k) values.push_back(SrgbToLinear((k - 0.5) / 255.0));
     return values;
   }();
   return thresholds;
 }
 
+// A first guess from a 2^14-entry table, corrected against the exact thresholds (at most a step or two).
 uchar EncodeSrgb8(float linear) {
-  const std::vector<float>& thresholds = SrgbEncodeThresholds();
-  return static_cast<uchar>(std::upper_bound(thresholds.begin(), thresholds.end(), linear) - thresholds.begin());
+  static const std::vector<uchar> guess = [] {
+    std::vector<uchar> table(16385);
+    const std::vector<double>& thresholds = SrgbEncodeThresholds();
+    for (int i = 0; i <= 16384; ++i) {
+      table[i] = static_cast<uchar>(std::upper_bound(thresholds.begin(), thresholds.end(), i / 16384.0) -
+                                     thresholds.begin());
+    }
+    return table;
+  }();
+  const std::vector<double>& thresholds = SrgbEncodeThresholds();
+  if (!(linear > 0.0f)) return 0;  // also NaN
+  if (linear >= 1.0f) return 255;
+  const double value = linear;
+  int code = guess[static_cast<int>(value * 16384.0)];
+  while (code < 255 && value >= thresholds[code]) ++code;
+  while (code > 0 && value < thresholds[code - 1]) --code;
+  return static_cast<uchar>(code);
 }
 
 }  // namespace

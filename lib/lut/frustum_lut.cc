@@ -93,14 +93,35 @@ NodeWeights FrustumLut::Weights(double u, double v, double z) const {
   return weights;
 }
 
+// The same interpolation as Weights(), computed directly (it runs once per pixel of every restored image):
+// bilinear within the two slabs around z, then along z.
 LutNode FrustumLut::Lookup(double u, double v, double z) const {
-  const NodeWeights weights = Weights(u, v, z);
-  LutNode result;
-  for (int n = 0; n < weights.count; ++n) {
-    const LutNode& node_value = nodes_[weights.node[n]];
-    result.alpha += weights.alpha_weight[n] * node_value.alpha;
-    result.beta += weights.weight[n] * node_value.beta;
+  int i0, j0, k0;
+  double fx, fy, fz;
+  Split(u / grid_.image_width * grid_.nx, grid_.NodesX(), &i0, &fx);
+  Split(v / grid_.image_height * grid_.ny, grid_.NodesY(), &j0, &fy);
+  Split(grid_.SlabCoordinate(z), grid_.nz, &k0, &fz);
+  const int i1 = std::min(i0 + 1, grid_.nx), j1 = std::min(j0 + 1, grid_.ny), k1 = std::min(k0 + 1, grid_.nz - 1);
+  const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+  LutNode slab[2];
+  const int ks[2] = {k0, k1};
+  for (int s = 0; s < 2; ++s) {
+    const LutNode& n00 = nodes_[grid_.NodeIndex(i0, j0, ks[s])];
+    const LutNode& n10 = nodes_[grid_.NodeIndex(i1, j0, ks[s])];
+    const LutNode& n01 = nodes_[grid_.NodeIndex(i0, j1, ks[s])];
+    const LutNode& n11 = nodes_[grid_.NodeIndex(i1, j1, ks[s])];
+    slab[s].alpha = w00 * n00.alpha + w10 * n10.alpha + w01 * n01.alpha + w11 * n11.alpha;
+    slab[s].beta = w00 * n00.beta + w10 * n10.beta + w01 * n01.beta + w11 * n11.beta;
   }
+  double alpha_scale[2] = {1.0, 1.0};
+  if (grid_.alpha_interpolation == AlphaInterpolation::kInverseSquare) {
+    const double clamped_z = grid_.nz == 1 ? grid_.z_near : std::clamp(z, grid_.z_near, grid_.z_far);
+    alpha_scale[0] = slab_depth_squared_[k0] / (clamped_z * clamped_z);
+    alpha_scale[1] = slab_depth_squared_[k1] / (clamped_z * clamped_z);
+  }
+  LutNode result;
+  result.alpha = (1 - fz) * alpha_scale[0] * slab[0].alpha + fz * alpha_scale[1] * slab[1].alpha;
+  result.beta = (1 - fz) * slab[0].beta + fz * slab[1].beta;
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "lib/image/image_io.h"
 
+#include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -40,6 +41,22 @@ TEST(ImageIo, EncodingRoundTrips) {
   const cv::Mat stored = cv::imread((dir.path() / "a.png").string(), cv::IMREAD_UNCHANGED);
   EXPECT_EQ(stored.at<cv::Vec3w>(0, 255)[2], 65535);
   EXPECT_EQ(stored.at<cv::Vec3w>(0, 255)[0], 0);
+}
+
+// The fast 8-bit encoder gives exactly round(255 * LinearToSrgb(v)) for values dense in [0, 1].
+TEST(ImageIo, FastSrgbEncodingIsExact) {
+  cv::Mat values(1, 200001, CV_32FC3);
+  for (int i = 0; i < values.cols; ++i) {
+    const float v = static_cast<float>(i) / 200000.0f;
+    values.at<cv::Vec3f>(0, i) = cv::Vec3f(v, v, v);
+  }
+  const cv::Mat encoded = EncodeLinearImage(values, ImageEncoding::kSrgb8);
+  int mismatches = 0;
+  for (int i = 0; i < values.cols; ++i) {
+    const double v = values.at<cv::Vec3f>(0, i)[0];
+    mismatches += encoded.at<cv::Vec3b>(0, i)[0] != static_cast<int>(std::lround(255.0 * LinearToSrgb(v)));
+  }
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(ImageIo, WrongEncodingAndMissingFilesAreErrors) {

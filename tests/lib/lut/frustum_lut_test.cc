@@ -92,6 +92,33 @@ TEST(FrustumLut, InverseSquareAlphaReproducesLinearOverZSquared) {
   }
 }
 
+// Lookup (direct, for restoration) and Weights (for calibration) are the same interpolation.
+TEST(FrustumLut, LookupEqualsTheWeightedSumOfNodes) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> value(0.0, 1.0), u(-20, 660), v(-20, 500), z(0.3, 3.5);
+  for (AlphaInterpolation interpolation : {AlphaInterpolation::kTrilinear, AlphaInterpolation::kInverseSquare}) {
+    FrustumLutGrid grid = Grid(5, 4, 6, DepthSpacing::kUniformInverseZ);
+    grid.alpha_interpolation = interpolation;
+    FrustumLut lut(grid);
+    for (int n = 0; n < grid.NumNodes(); ++n) {
+      lut.node(n).alpha = Eigen::Vector3d(value(random), value(random), value(random));
+      lut.node(n).beta = Eigen::Vector3d(value(random), value(random), value(random));
+    }
+    for (int trial = 0; trial < 300; ++trial) {
+      const double pu = u(random), pv = v(random), pz = z(random);
+      const NodeWeights weights = lut.Weights(pu, pv, pz);
+      LutNode summed;
+      for (int n = 0; n < weights.count; ++n) {
+        summed.alpha += weights.alpha_weight[n] * lut.node(weights.node[n]).alpha;
+        summed.beta += weights.weight[n] * lut.node(weights.node[n]).beta;
+      }
+      const LutNode looked_up = lut.Lookup(pu, pv, pz);
+      ASSERT_LT((looked_up.alpha - summed.alpha).norm(), 1e-12);
+      ASSERT_LT((looked_up.beta - summed.beta).norm(), 1e-12);
+    }
+  }
+}
+
 // Outside the image or the depth range the border value holds.
 TEST(FrustumLut, ClampsAtTheBorders) {
   const FrustumLut lut = FilledLinear(Grid(4, 3, 3, DepthSpacing::kUniformZ));
