@@ -1,0 +1,97 @@
+#include "lib/calibration/calibration_weights.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lutex {
+namespace {
+
+// Mean absolute difference of one quantity (alpha or beta, per channel) over neighbour pairs.
+template <typename Get>
+Eigen::Vector3d MeanDifference(const FrustumLut& lut, int k0, int k1, bool within, Get get) {
+  const FrustumLutGrid& grid = lut.grid();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (int j = 0; j < grid.NodesY(); ++j) {
+    for (int i = 0; i < grid.NodesX(); ++i) {
+      if (within) {
+        if (i + 1 < grid.NodesX()) {
+          sum += (get(lut.node(i + 1, j, k0)) - get(lut.node(i, j, k0))).cwiseAbs();
+          ++count;
+        }
+        if (j + 1 < grid.NodesY()) {
+          sum += (get(lut.node(i, j + 1, k0)) - get(lut.node(i, j, k0))).cwiseAbs();
+          ++count;
+        }
+      } else {
+        sum += (get(lut.node(i, j, k1)) - get(lut.node(i, j, k0))).cwiseAbs();
+        ++count;
+      }
+    }
+  }
+  return count ? Eigen::Vector3d(sum / count) : Eigen::Vector3d::Zero();
+}
+
+Eigen::Vector3d SlabMean(const FrustumLut& lut, int k) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int j = 0; j < lut.grid().NodesY(); ++j) {
+    for (int i = 0; i < lut.grid().NodesX(); ++i) sum += 0.7 * lut.node(i, j, k).alpha + lut.node(i, j, k).beta;
+  }
+  return sum / (lut.grid().NodesX() * lut.grid().NodesY());
+}
+
+}  // namespace
+
+SmoothnessWeights ComputeSmoothnessWeights(const FrustumLut& reference, double scale, double alpha_factor) {
+  const FrustumLutGrid& grid = reference.grid();
+  double alpha_max = 0.0, beta_max = 0.0;
+  for (int n = 0; n < grid.NumNodes(); ++n) {
+    alpha_max = std::max(alpha_max, reference.node(n).alpha.maxCoeff());
+    beta_max = std::max(beta_max, reference.node(n).beta.maxCoeff());
+  }
+  const double alpha_floor = std::max(1e-6 * alpha_max, 1e-12), beta_floor = std::max(1e-6 * beta_max, 1e-12);
+  const auto alpha = [](const LutNode& node) { return node.alpha; };
+  const auto beta = [](const LutNode& node) { return node.beta; };
+  const auto weight = [](const Eigen::Vector3d& gradient, double floor, double numerator) {
+    return Eigen::Vector3d(numerator / gradient.array().max(floor));
+  };
+  SmoothnessWeights weights;
+  for (int k = 0; k < grid.nz; ++k) {
+    weights.alpha_within.push_back(weight(MeanDifference(reference, k, k, true, alpha), alpha_floor, scale * alpha_factor));
+    weights.beta_within.push_back(weight(MeanDifference(reference, k, k, true, beta), beta_floor, scale));
+    if (k + 1 < grid.nz) {
+      weights.alpha_between.push_back(
+          weight(MeanDifference(reference, k, k + 1, false, alpha), alpha_floor, scale * alpha_factor));
+      weights.beta_between.push_back(weight(MeanDifference(reference, k, k + 1, false, beta), beta_floor, scale));
+    }
+  }
+  return weights;
+}
+
+Eigen::Vector3d KnownColorWeight(const FrustumLut& reference, const KnownColorObservation& observation) {
+  const FrustumLutGrid& grid = reference.grid();
+  const double z = observation.point_in_cam.z();
+  const int slab = std::clamp(static_cast<int>(std::lround(grid.SlabCoordinate(z))), 0, grid.nz - 1);
+  const Eigen::Vector3d mean = SlabMean(reference, slab);
+  const double mean_0_green = std::max(SlabMean(reference, 0).y(), 1e-12);
+  constexpr double kReferenceSnr = 10.0;  // 20 dB on the first slab's green channel
+  // Distance to the nearest node, in node spacings.
+  const double gx = observation.pixel.x() / grid.image_width * grid.nx;
+  const double gy = observation.pixel.y() / grid.image_height * grid.ny;
+  const double gz = grid.SlabCoordinate(z);
+  const double node_distance = std::sqrt(std::pow(gx - std::round(gx), 2) + std::pow(gy - std::round(gy), 2) +
+                                         std::pow(gz - std::round(gz), 2));
+  const double inverse_distance = 1.0 / std::max(node_distance, 0.25);
+  const double forward_scatter = std::exp(-observation.point_in_cam.norm());  // 1 / (e^(0.5 d))^2
+  Eigen::Vector3d weight;
+  for (int c = 0; c < 3; ++c) {
+    const double mean_c = std::max(mean[c], 1e-12);
+    const double shot = 0.01 * std::sqrt(mean_c);
+    const double constant = mean_c / (kReferenceSnr * mean_0_green);
+    const double snr = std::max(observation.intensity[c], 0.0) / (shot + constant);
+    weight[c] = inverse_distance * snr * forward_scatter;
+  }
+  return weight;
+}
+
+}  // namespace lutex

@@ -1,0 +1,38 @@
+#pragma once
+
+// Weights of the calibration's constraints (paper Sec. 2.4, "Weights and Accuracy"), derived from a
+// reference LUT pre-rendered by the simulator for a single point light at the camera in the expected
+// water, scaled to the images' intensity units.
+//
+// Smoothness: with grad the mean absolute difference between neighbouring nodes within slab N (or between
+// slabs N and N+1) of the reference,
+//   w_alpha(N) = scale * alpha_factor / grad_alpha(N),   w_beta(N) = scale / grad_beta(N)
+// with the paper's scale 0.01 and alpha_factor 0.7 (the average scene intensity, which brings alpha and
+// beta to one scale). Where the reference is flat (beta in air) the gradient is floored at 1e-6 of the
+// quantity's largest value.
+//
+// Known colour, per channel: w = 1 / d_v * snr / (e^(0.5 d))^2 with d the distance from the camera,
+// snr = I / (n_shot + n_const), n_shot = 0.01 sqrt(mean_N), n_const = mean_N / (snr_0 * mean_0,green),
+// mean_N = 0.7 mean(alpha_N) + mean(beta_N) of the observation's slab, snr_0 = 10 (20 dB). The paper's
+// d_v, the distance from the voxel centre, is unbounded at a node; lutex measures it in node spacings to
+// the nearest node and floors it at 0.25.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lib/calibration/observations.h"
+#include "lib/lut/frustum_lut.h"
+
+namespace lutex {
+
+struct SmoothnessWeights {
+  std::vector<Eigen::Vector3d> alpha_within, beta_within;    // one per slab
+  std::vector<Eigen::Vector3d> alpha_between, beta_between;  // one per pair of neighbouring slabs
+};
+
+SmoothnessWeights ComputeSmoothnessWeights(const FrustumLut& reference, double scale = 0.01, double alpha_factor = 0.7);
+
+Eigen::Vector3d KnownColorWeight(const FrustumLut& reference, const KnownColorObservation& observation);
+
+}  // namespace lutex

@@ -1,0 +1,231 @@
+#include "lib/calibration/calibrator.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <ceres/ceres.h>
+
+#include "lib/calibration/calibration_weights.h"
+#include "lib/calibration/cost_functions.h"
+#include "lib/util/parallel_for.h"
+
+namespace lutex {
+namespace {
+
+using NodeValues = std::vector<std::array<double, 2>>;  // (alpha, beta) per node, one channel
+
+FrustumLutGrid LevelGrid(const FrustumLutGrid& finest, const std::pair<int, int>& level) {
+  FrustumLutGrid grid = finest;
+  grid.nx = level.first;
+  grid.ny = level.second;
+  return grid;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// The reference LUT rescaled so its alpha matches the data's typical I / (cos_theta rho).
+FrustumLut ScaledReference(const FrustumLut& reference, const ObservationSet& observations) {
+  std::vector<double> data_ratio, reference_ratio;
+  for (const KnownColorObservation& observation : observations.known_colors) {
+    const double shading = observation.cos_theta * observation.albedo.y();
+    if (shading <= 0.05) continue;
+    data_ratio.push_back(observation.intensity.y() / shading);
+    reference_ratio.push_back(
+        reference.Lookup(observation.pixel.x(), observation.pixel.y(), observation.point_in_cam.z()).alpha.y());
+  }
+  const double reference_median = Median(reference_ratio);
+  const double scale = reference_median > 0 ? Median(data_ratio) / reference_median : 1.0;
+  FrustumLut scaled = reference;
+  for (int n = 0; n < scaled.grid().NumNodes(); ++n) {
+    scaled.node(n).alpha *= scale;
+    scaled.node(n).beta *= scale;
+  }
+  return scaled;
+}
+
+struct ChannelProblemInput {
+  const ObservationSet& observations;
+  const std::vector<Eigen::Vector3d>& known_color_weights;
+  const FrustumLut& level_lut;  // grid of this level (values unused)
+  const SmoothnessWeights& smoothness;
+  const CalibrationOptions& options;
+};
+
+// Solves one channel on one level, starting from `values`.
+ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channel, NodeValues* values) {
+  const FrustumLutGrid& grid = input.level_lut.grid();
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  const auto block = [values](int node) { return (*values)[static_cast<std::size_t>(node)].data(); };
+
+  for (std::size_t o = 0; o < input.observations.known_colors.size(); ++o) {
+    const KnownColorObservation& observation = input.observations.known_colors[o];
+    const double weight = input.known_color_weights[o][channel];
+    if (!(weight > 0.0)) continue;
+    const NodeWeights weights =
+        input.level_lut.Weights(observation.pixel.x(), observation.pixel.y(), observation.point_in_cam.z());
+    std::vector<double> alpha_weights(weights.alpha_weight.begin(), weights.alpha_weight.begin() + weights.count);
+    std::vector<double> beta_weights(weights.weight.begin(), weights.weight.begin() + weights.count);
+    std::vector<double*> blocks;
+    for (int n = 0; n < weights.count; ++n) blocks.push_back(block(weights.node[n]));
+    problem.AddResidualBlock(KnownColorResidual::Create(std::move(alpha_weights), std::move(beta_weights),
+                                                        observation.cos_theta * observation.albedo[channel],
+                                                        observation.intensity[channel], weight),
+                             nullptr, blocks);
+  }
+  for (const PureWaterObservation& observation : input.observations.pure_water) {
+    if (input.options.in_air) break;
+    for (int k = 0; k < grid.nz; ++k) {
+      const NodeWeights weights = input.level_lut.Weights(observation.pixel.x(), observation.pixel.y(), grid.SlabDepth(k));
+      std::vector<double> beta_weights(weights.weight.begin(), weights.weight.begin() + weights.count);
+      std::vector<double*> blocks;
+      for (int n = 0; n < weights.count; ++n) blocks.push_back(block(weights.node[n]));
+      problem.AddResidualBlock(PureWaterBoundResidual::Create(std::move(beta_weights), observation.intensity[channel],
+                                                              input.options.pure_water_weight * observation.weight),
+                               nullptr, blocks);
+    }
+  }
+  for (int k = 0; k < grid.nz; ++k) {
+    for (int j = 0; j < grid.NodesY(); ++j) {
+      for (int i = 0; i < grid.NodesX(); ++i) {
+        const int here = grid.NodeIndex(i, j, k);
+        const auto add = [&](int there, double alpha_weight, double beta_weight) {
+          problem.AddResidualBlock(SmoothnessResidual::Create(0, alpha_weight), nullptr, block(here), block(there));
+          if (!input.options.in_air) {
+            problem.AddResidualBlock(SmoothnessResidual::Create(1, beta_weight), nullptr, block(here), block(there));
+          }
+        };
+        if (i + 1 < grid.NodesX()) add(grid.NodeIndex(i + 1, j, k), input.smoothness.alpha_within[k][channel], input.smoothness.beta_within[k][channel]);
+        if (j + 1 < grid.NodesY()) add(grid.NodeIndex(i, j + 1, k), input.smoothness.alpha_within[k][channel], input.smoothness.beta_within[k][channel]);
+        if (k + 1 < grid.nz) add(grid.NodeIndex(i, j, k + 1), input.smoothness.alpha_between[k][channel], input.smoothness.beta_between[k][channel]);
+      }
+    }
+  }
+  for (int n = 0; n < grid.NumNodes(); ++n) {
+    if (!problem.HasParameterBlock(block(n))) continue;
+    problem.SetParameterLowerBound(block(n), 0, 0.0);
+    if (input.options.in_air) {
+      (*values)[static_cast<std::size_t>(n)][1] = 0.0;
+      problem.SetManifold(block(n), new ceres::SubsetManifold(2, {1}));
+    } else {
+      problem.SetParameterLowerBound(block(n), 1, 0.0);
+    }
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.max_num_iterations = input.options.max_iterations;
+  solver_options.num_threads = 1;  // parallel over channels instead
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, &problem, &summary);
+  return summary;
+}
+
+}  // namespace
+
+void CalibrationOptions::Check() const {
+  grid.Check();
+  if (levels.empty()) throw std::invalid_argument("calibration needs at least one level");
+  if (levels.back().first != grid.nx || levels.back().second != grid.ny) {
+    throw std::invalid_argument("the last calibration level must be the grid's nx x ny");
+  }
+  for (const auto& level : levels) {
+    if (level.first < 1 || level.second < 1) throw std::invalid_argument("calibration levels need nx, ny >= 1");
+  }
+  if (!(smoothness_scale >= 0.0) || !(alpha_smoothness_factor > 0.0) || !(pure_water_weight >= 0.0)) {
+    throw std::invalid_argument("calibration weights must not be negative");
+  }
+  if (max_iterations < 1) throw std::invalid_argument("max_iterations must be at least 1");
+}
+
+CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut& reference,
+                            const CalibrationOptions& options) {
+  options.Check();
+  if (!(reference.grid() == options.grid)) throw std::invalid_argument("the reference LUT must be on the calibration grid");
+  if (observations.known_colors.empty()) throw std::invalid_argument("calibration needs known-colour observations");
+  const auto start = std::chrono::steady_clock::now();
+  const FrustumLut scaled_reference = ScaledReference(reference, observations);
+  std::vector<Eigen::Vector3d> known_color_weights;
+  known_color_weights.reserve(observations.known_colors.size());
+  for (const KnownColorObservation& observation : observations.known_colors) {
+    known_color_weights.push_back(KnownColorWeight(scaled_reference, observation).cwiseProduct(observation.weight));
+  }
+
+  CalibrationResult result;
+  result.summary.num_known_color = observations.known_colors.size();
+  result.summary.num_pure_water = observations.pure_water.size();
+  FrustumLut current;
+  for (std::size_t l = 0; l < options.levels.size(); ++l) {
+    const FrustumLutGrid grid = LevelGrid(options.grid, options.levels[l]);
+    FrustumLut level_lut = l == 0 ? scaled_reference.Resampled(grid) : current.Resampled(grid);
+    if (options.in_air) {
+      for (int n = 0; n < grid.NumNodes(); ++n) level_lut.node(n).beta.setZero();
+    }
+    const SmoothnessWeights smoothness = ComputeSmoothnessWeights(scaled_reference.Resampled(grid), options.smoothness_scale,
+                                                                  options.alpha_smoothness_factor);
+    CalibrationLevelSummary level_summary;
+    level_summary.nx = grid.nx;
+    level_summary.ny = grid.ny;
+    const ChannelProblemInput input{observations, known_color_weights, level_lut, smoothness, options};
+    ParallelFor(3, options.num_threads, [&](std::size_t channel) {
+      const int c = static_cast<int>(channel);
+      NodeValues values(static_cast<std::size_t>(grid.NumNodes()));
+      for (int n = 0; n < grid.NumNodes(); ++n) values[static_cast<std::size_t>(n)] = {level_lut.node(n).alpha[c], level_lut.node(n).beta[c]};
+      const ceres::Solver::Summary summary = SolveChannel(input, c, &values);
+      level_summary.iterations[c] = static_cast<int>(summary.iterations.size());
+      level_summary.final_cost[c] = summary.final_cost;
+      for (int n = 0; n < grid.NumNodes(); ++n) {
+        // Each channel writes only its own component: no race between channels.
+        level_lut.node(n).alpha[c] = values[static_cast<std::size_t>(n)][0];
+        level_lut.node(n).beta[c] = values[static_cast<std::size_t>(n)][1];
+      }
+    });
+    result.summary.levels.push_back(level_summary);
+    current = level_lut;
+  }
+  result.lut = current;
+
+  // Coverage and residual summary on the finest level.
+  result.coverage = FrustumLut(options.grid);
+  std::vector<int> touches(static_cast<std::size_t>(options.grid.NumNodes()), 0);
+  Eigen::Vector3d squared = Eigen::Vector3d::Zero();
+  for (std::size_t o = 0; o < observations.known_colors.size(); ++o) {
+    const KnownColorObservation& observation = observations.known_colors[o];
+    const NodeWeights weights = result.lut.Weights(observation.pixel.x(), observation.pixel.y(), observation.point_in_cam.z());
+    for (int n = 0; n < weights.count; ++n) {
+      if (weights.weight[n] > 0.1 && known_color_weights[o].minCoeff() > 0.0) ++touches[static_cast<std::size_t>(weights.node[n])];
+    }
+    const LutNode value = result.lut.Lookup(observation.pixel.x(), observation.pixel.y(), observation.point_in_cam.z());
+    const Eigen::Vector3d predicted =
+        value.alpha.cwiseProduct(observation.albedo) * observation.cos_theta + value.beta;
+    squared += (predicted - observation.intensity).cwiseAbs2();
+  }
+  result.summary.known_color_rms = (squared / static_cast<double>(observations.known_colors.size())).cwiseSqrt();
+  int covered = 0;
+  for (int n = 0; n < options.grid.NumNodes(); ++n) {
+    const double coverage = std::min(1.0, touches[static_cast<std::size_t>(n)] / 4.0);
+    result.coverage.node(n).alpha.setConstant(coverage);
+    covered += coverage >= 1.0;
+  }
+  result.summary.covered_fraction = static_cast<double>(covered) / options.grid.NumNodes();
+  for (const PureWaterObservation& observation : observations.pure_water) {
+    for (int k = 0; k < options.grid.nz; ++k) {
+      const Eigen::Vector3d beta =
+          result.lut.Lookup(observation.pixel.x(), observation.pixel.y(), options.grid.SlabDepth(k)).beta;
+      result.summary.pure_water_max_violation =
+          result.summary.pure_water_max_violation.cwiseMax(beta - observation.intensity);
+    }
+  }
+  result.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace lutex

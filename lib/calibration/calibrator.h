@@ -1,0 +1,72 @@
+#pragma once
+
+// Fitting a FrustumLut to observations (paper Sec. 2.2-2.4): known colours, smoothness between the six
+// neighbours of every node, pure-water upper bounds on beta, and positivity of alpha and beta; solved by
+// Ceres (Levenberg-Marquardt, sparse Cholesky) for the three channels independently and in parallel,
+// coarse to fine: each level's nx x ny cells are solved starting from the previous level resampled
+// (corner-aligned grids nest exactly, see frustum_lut.h). In air, beta is held at 0.
+
+#include <utility>
+#include <vector>
+
+#include "lib/calibration/observations.h"
+#include "lib/lut/frustum_lut.h"
+
+namespace lutex {
+
+struct CalibrationOptions {
+  // The finest grid (its nx, ny must equal the last level's); nz, depth range, spacing and image size
+  // are shared by all levels.
+  FrustumLutGrid grid;
+  // Cells across and down per level, coarse to fine (paper: 4x3 -> 20x15 -> 40x30).
+  std::vector<std::pair<int, int>> levels = {{4, 3}, {20, 15}, {40, 30}};
+  // In air: no backscatter, beta fixed at 0 (one known colour is then enough).
+  bool in_air = false;
+  // Smoothness weights relative to observations (paper: 0.01) and alpha's factor (paper: 0.7).
+  double smoothness_scale = 0.01;
+  double alpha_smoothness_factor = 0.7;
+  // Weight of a pure-water bound violation, per unit of excess beta.
+  double pure_water_weight = 100.0;
+  // Levenberg-Marquardt iterations per level and channel.
+  int max_iterations = 100;
+  // Threads over channels; <= 0 means all cores. Results do not depend on it.
+  int num_threads = 0;
+
+  // Throws std::invalid_argument on nonsense.
+  void Check() const;
+};
+
+struct CalibrationLevelSummary {
+  int nx = 0, ny = 0;
+  int iterations[3] = {0, 0, 0};
+  double final_cost[3] = {0, 0, 0};
+};
+
+struct CalibrationSummary {
+  std::vector<CalibrationLevelSummary> levels;
+  std::size_t num_known_color = 0;
+  std::size_t num_pure_water = 0;
+  // Root-mean-square of the unweighted known-colour residuals (predicted - observed), per channel.
+  Eigen::Vector3d known_color_rms = Eigen::Vector3d::Zero();
+  // Largest pure-water bound violation (beta - I_pw) over all bounds, per channel; 0 when none.
+  Eigen::Vector3d pure_water_max_violation = Eigen::Vector3d::Zero();
+  // Fraction of the finest LUT's nodes constrained by known-colour data (see coverage).
+  double covered_fraction = 0.0;
+  double seconds = 0.0;
+};
+
+struct CalibrationResult {
+  FrustumLut lut;
+  // Per node, in alpha (all three channels equal): how well data constrained it, in [0, 1] (1 when at
+  // least 4 known-colour observations with non-negligible weight touch the node). Restoration uses it
+  // for confidence.
+  FrustumLut coverage;
+  CalibrationSummary summary;
+};
+
+// `reference` is the weighting LUT on options.grid (a point light at the camera in the expected water,
+// any intensity scale: it is rescaled to the data).
+CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut& reference,
+                            const CalibrationOptions& options);
+
+}  // namespace lutex

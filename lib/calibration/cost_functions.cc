@@ -1,0 +1,35 @@
+#include "lib/calibration/cost_functions.h"
+
+namespace lutex {
+namespace {
+
+constexpr int kStride = 4;
+
+template <typename Functor>
+ceres::CostFunction* MakeDynamic(Functor* functor, std::size_t num_nodes) {
+  auto* cost = new ceres::DynamicAutoDiffCostFunction<Functor, kStride>(functor);
+  for (std::size_t i = 0; i < num_nodes; ++i) cost->AddParameterBlock(2);
+  cost->SetNumResiduals(1);
+  return cost;
+}
+
+}  // namespace
+
+ceres::CostFunction* KnownColorResidual::Create(std::vector<double> alpha_weights, std::vector<double> beta_weights,
+                                                double shading_albedo, double intensity, double weight) {
+  const std::size_t count = alpha_weights.size();
+  return MakeDynamic(new KnownColorResidual{std::move(alpha_weights), std::move(beta_weights), shading_albedo,
+                                            intensity, weight},
+                     count);
+}
+
+ceres::CostFunction* SmoothnessResidual::Create(int component, double weight) {
+  return new ceres::AutoDiffCostFunction<SmoothnessResidual, 1, 2, 2>(new SmoothnessResidual{component, weight});
+}
+
+ceres::CostFunction* PureWaterBoundResidual::Create(std::vector<double> beta_weights, double intensity, double weight) {
+  const std::size_t count = beta_weights.size();
+  return MakeDynamic(new PureWaterBoundResidual{std::move(beta_weights), intensity, weight}, count);
+}
+
+}  // namespace lutex

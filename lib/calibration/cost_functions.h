@@ -1,0 +1,69 @@
+#pragma once
+
+// The calibration's residuals, one channel at a time. Every LUT node is a parameter block of two values
+// (alpha, beta) for the channel being solved. A lookup combines up to 8 nodes with weights from
+// FrustumLut::Weights (alpha_weight for alpha, weight for beta).
+
+#include <array>
+#include <vector>
+
+#include <ceres/ceres.h>
+
+namespace lutex {
+
+// Known colour, paper Eq. 5: w * (sum_i a_i alpha_i * cos_theta * rho + sum_i b_i beta_i - I).
+struct KnownColorResidual {
+  std::vector<double> alpha_weights;  // a_i, one per node block
+  std::vector<double> beta_weights;   // b_i
+  double shading_albedo;              // cos_theta * rho
+  double intensity;                   // I
+  double weight;                      // w
+
+  template <typename T>
+  bool operator()(T const* const* nodes, T* residual) const {
+    T predicted = T(-intensity);
+    for (std::size_t i = 0; i < alpha_weights.size(); ++i) {
+      predicted += alpha_weights[i] * shading_albedo * nodes[i][0] + beta_weights[i] * nodes[i][1];
+    }
+    residual[0] = weight * predicted;
+    return true;
+  }
+
+  static ceres::CostFunction* Create(std::vector<double> alpha_weights, std::vector<double> beta_weights,
+                                     double shading_albedo, double intensity, double weight);
+};
+
+// Smoothness between two neighbouring nodes, paper Eq. 7: w * (x_a - x_b) for x = alpha (component 0)
+// or beta (component 1).
+struct SmoothnessResidual {
+  int component;
+  double weight;
+
+  template <typename T>
+  bool operator()(const T* node_a, const T* node_b, T* residual) const {
+    residual[0] = weight * (node_a[component] - node_b[component]);
+    return true;
+  }
+
+  static ceres::CostFunction* Create(int component, double weight);
+};
+
+// Pure water, paper Eq. 9, as a one-sided penalty: w * max(0, sum_i b_i beta_i - I_pw).
+struct PureWaterBoundResidual {
+  std::vector<double> beta_weights;
+  double intensity;
+  double weight;
+
+  template <typename T>
+  bool operator()(T const* const* nodes, T* residual) const {
+    T beta = T(0.0);
+    for (std::size_t i = 0; i < beta_weights.size(); ++i) beta += beta_weights[i] * nodes[i][1];
+    const T excess = beta - T(intensity);
+    residual[0] = excess > T(0.0) ? T(weight) * excess : T(0.0);
+    return true;
+  }
+
+  static ceres::CostFunction* Create(std::vector<double> beta_weights, double intensity, double weight);
+};
+
+}  // namespace lutex

@@ -1,0 +1,35 @@
+#pragma once
+
+// What the calibration fits the LUT to (paper Sec. 2.2). Every observation carries its pixel, its 3-D
+// point in the camera frame (planar depth z = point.z()), its colour, its shading and its weight.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace lutex {
+
+// A pixel seeing a surface of known albedo: I = alpha(x) cos_theta rho + beta(x)   (paper Eq. 5).
+struct KnownColorObservation {
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+  Eigen::Vector3d point_in_cam = Eigen::Vector3d::Zero();
+  Eigen::Vector3d intensity = Eigen::Vector3d::Zero();  // linear RGB
+  Eigen::Vector3d albedo = Eigen::Vector3d::Zero();     // linear RGB
+  double cos_theta = 1.0;
+  Eigen::Vector3d weight = Eigen::Vector3d::Ones();     // per channel (paper "Weights and Accuracy")
+};
+
+// A pixel of a pure-water image: backscatter only, so beta along its ray is at most the observed value at
+// every slab (paper Eq. "beta_N <= I_pw").
+struct PureWaterObservation {
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+  Eigen::Vector3d intensity = Eigen::Vector3d::Zero();
+  double weight = 1.0;
+};
+
+struct ObservationSet {
+  std::vector<KnownColorObservation> known_colors;
+  std::vector<PureWaterObservation> pure_water;
+};
+
+}  // namespace lutex

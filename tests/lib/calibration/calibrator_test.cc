@@ -1,0 +1,166 @@
+// Calibration on data the simulator rendered (seeded, noisy, 8-bit sRGB): frames of two flat boards of
+// known, widely different colours at 0.7-2.8 m, tilted, in clear water with two spot lights 0.3 m to the
+// sides. The recovered LUT is compared with the simulator's true LUT on the nodes the data covers, and a
+// held-out view of a third colour is restored and compared with its true albedo.
+//
+// Status: the bounds below are what the first version of the calibrator achieves (measured: fit RMS
+// 0.004, alpha median relative error 15 %, held-out restoration median 2.9 % / p90 12 %), not yet the
+// accuracy the method allows: alpha oscillates between neighbouring slabs and overshoots at the image
+// corners and the far slab. They guard against regressions while that is worked on.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "lib/calibration/calibrator.h"
+#include "lib/calibration/known_color_sampling.h"
+#include "lib/geometry/look_at.h"
+#include "lib/geometry/mesh_primitives.h"
+#include "lib/image/image_io.h"
+#include "lib/model/sensor.h"
+#include "lib/model/simulator.h"
+#include "lib/restoration/restorer.h"
+#include "tests/support/temp_dir.h"
+
+namespace lutex {
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+Water ClearWater() {
+  Water water;
+  water.absorption = Eigen::Vector3d(0.35, 0.05, 0.02);
+  water.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
+  water.anisotropy_g = 0.88;
+  return water;
+}
+
+LightRig TwoSpots() {
+  LightRig rig;
+  for (double x : {-0.3, 0.3}) {
+    Light light;
+    light.position_in_cam = Eigen::Vector3d(x, 0, 0);
+    light.intensity = Eigen::Vector3d::Constant(1.0);
+    light.profile = BeamProfile::kCosinePower;
+    light.exponent = 1.5;
+    rig.lights.push_back(light);
+  }
+  return rig;
+}
+
+FrustumLutGrid Grid() {
+  FrustumLutGrid grid;
+  grid.nx = 8;
+  grid.ny = 6;
+  grid.nz = 6;
+  grid.z_near = 0.7;
+  grid.z_far = 2.8;
+  grid.image_width = kWidth;
+  grid.image_height = kHeight;
+  return grid;
+}
+
+// A camera looking at the board (the plane z = 0) from `distance`, tilted by `tilt` radians about x.
+Rigid3d BoardView(double distance, double tilt) {
+  const Eigen::Vector3d forward(0, std::sin(tilt), -std::cos(tilt));
+  return CamFromWorldLookingAt(-distance * forward, forward, Eigen::Vector3d(0, -1, 0));
+}
+
+// Renders one noisy 8-bit frame (through a PNG round trip) and its geometry.
+struct Frame {
+  cv::Mat image;
+  GeometryMaps maps;
+};
+
+Frame Render(const Simulator& simulator, const RaycastScene& scene, const CameraRays& rays, const Rigid3d& pose,
+             std::uint64_t index, const testing::TempDir& dir) {
+  SensorOptions sensor;
+  sensor.exposure = 2.0;
+  sensor.shot_noise = 0.01;
+  sensor.read_noise = 0.002;
+  sensor.seed = 5;
+  const auto path = dir.path() / ("frame_" + std::to_string(index) + ".png");
+  WriteLinearImage(ApplySensor(simulator.Render(rays, pose), sensor, index), path, ImageEncoding::kSrgb8);
+  return {ReadLinearImage(path, ImageEncoding::kSrgb8), scene.Render(rays, pose)};
+}
+
+TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
+  testing::TempDir dir;
+  const Mesh board = MakeHeightFieldMesh([](double, double) { return 0.0; }, -10, 10, -10, 10, 2, 2);
+  const RaycastScene scene(board);
+  const Camera camera = Camera::Pinhole(1, kWidth, kHeight, 100, 100);
+  const CameraRays rays(camera);
+  // sRGB [181, 110, 30] and [80, 160, 90], the shared dataset's boards, linearised.
+  const Eigen::Vector3d orange(SrgbToLinear(181 / 255.0), SrgbToLinear(110 / 255.0), SrgbToLinear(30 / 255.0));
+  const Eigen::Vector3d green(SrgbToLinear(80 / 255.0), SrgbToLinear(160 / 255.0), SrgbToLinear(90 / 255.0));
+
+  ObservationSet observations;
+  std::uint64_t index = 0;
+  for (const Eigen::Vector3d& albedo : {orange, green}) {
+    const Simulator simulator(board, TwoSpots(), ClearWater(), SurfaceAlbedo::Constant(albedo));
+    for (double distance : {0.7, 0.95, 1.25, 1.6, 2.0, 2.4, 2.8}) {
+      for (double tilt : {-0.26, 0.26}) {
+        const Frame frame = Render(simulator, scene, rays, BoardView(distance, tilt), index++, dir);
+        const cv::Mat known(kHeight, kWidth, CV_32FC3, cv::Scalar(albedo.x(), albedo.y(), albedo.z()));
+        for (const KnownColorObservation& observation : SampleKnownColors(frame.image, known, frame.maps, rays)) {
+          observations.known_colors.push_back(observation);
+        }
+      }
+    }
+  }
+  CalibrationOptions options;
+  options.grid = Grid();
+  options.levels = {{2, 2}, {4, 3}, {8, 6}};
+  const Simulator weighting(board, PointLightAtCamera(), ClearWater(), SurfaceAlbedo::Constant(orange));
+  const CalibrationResult result = Calibrate(observations, weighting.TrueLut(camera, options.grid), options);
+
+  // Exposure 2 scales the true LUT into image units.
+  const Simulator truth(board, TwoSpots(), ClearWater(), SurfaceAlbedo::Constant(orange));
+  FrustumLut true_lut = truth.TrueLut(camera, options.grid);
+  std::vector<double> alpha_errors, beta_errors;
+  for (int n = 0; n < options.grid.NumNodes(); ++n) {
+    if (result.coverage.node(n).alpha.x() < 1.0) continue;
+    for (int c = 0; c < 3; ++c) {
+      alpha_errors.push_back(std::abs(result.lut.node(n).alpha[c] / (2.0 * true_lut.node(n).alpha[c]) - 1.0));
+      beta_errors.push_back(std::abs(result.lut.node(n).beta[c] - 2.0 * true_lut.node(n).beta[c]));
+    }
+  }
+  ASSERT_FALSE(alpha_errors.empty());
+  std::sort(alpha_errors.begin(), alpha_errors.end());
+  std::sort(beta_errors.begin(), beta_errors.end());
+  std::printf("observations %zu, covered nodes %.0f %%, rms %.4f %.4f %.4f\n", observations.known_colors.size(),
+              100 * result.summary.covered_fraction, result.summary.known_color_rms.x(),
+              result.summary.known_color_rms.y(), result.summary.known_color_rms.z());
+  std::printf("alpha relative error: median %.4f p90 %.4f; beta absolute error: median %.5f p90 %.5f\n",
+              alpha_errors[alpha_errors.size() / 2], alpha_errors[alpha_errors.size() * 9 / 10],
+              beta_errors[beta_errors.size() / 2], beta_errors[beta_errors.size() * 9 / 10]);
+
+  // Held out: a grey board at 1.8 m tilted 20 degrees about x.
+  const Eigen::Vector3d grey = Eigen::Vector3d::Constant(0.35);
+  const Simulator held_out(board, TwoSpots(), ClearWater(), SurfaceAlbedo::Constant(grey));
+  const Frame frame = Render(held_out, scene, rays, BoardView(1.8, 0.35), 99, dir);
+  const RestoredImage restored = RestoreImage(frame.image, frame.maps, rays, result.lut, RestorationOptions());
+  std::vector<double> errors;
+  for (int row = 0; row < kHeight; ++row) {
+    for (int col = 0; col < kWidth; ++col) {
+      for (int c = 0; c < 3; ++c) {
+        if (restored.confidence.at<cv::Vec3f>(row, col)[c] < 0.5f) continue;
+        errors.push_back(std::abs(restored.albedo.at<cv::Vec3f>(row, col)[c] - grey[c]));
+      }
+    }
+  }
+  std::sort(errors.begin(), errors.end());
+  std::printf("held-out restoration: median error %.4f, p90 %.4f over %zu pixel-channels\n", errors[errors.size() / 2],
+              errors[errors.size() * 9 / 10], errors.size());
+  EXPECT_LT(result.summary.known_color_rms.maxCoeff(), 0.01);  // the fit explains the data to ~1 8-bit level
+  EXPECT_GT(result.summary.covered_fraction, 0.9);
+  EXPECT_LT(alpha_errors[alpha_errors.size() / 2], 0.25);
+  EXPECT_LT(errors[errors.size() / 2], 0.05);
+  EXPECT_LT(errors[errors.size() * 9 / 10], 0.2);
+}
+
+}  // namespace
+}  // namespace lutex
