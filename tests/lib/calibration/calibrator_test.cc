@@ -24,32 +24,12 @@
 #include "lib/model/simulator.h"
 #include "lib/restoration/restorer.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/test_scenes.h"
 
 namespace lutex {
 namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
-
-Water ClearWater() {
-  Water water;
-  water.absorption = Eigen::Vector3d(0.35, 0.05, 0.02);
-  water.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
-  water.anisotropy_g = 0.88;
-  return water;
-}
-
-LightRig TwoSpots() {
-  LightRig rig;
-  for (double x : {-0.3, 0.3}) {
-    Light light;
-    light.position_in_cam = Eigen::Vector3d(x, 0, 0);
-    light.intensity = Eigen::Vector3d::Constant(1.0);
-    light.profile = BeamProfile::kCosinePower;
-    light.exponent = 1.5;
-    rig.lights.push_back(light);
-  }
-  return rig;
-}
 
 FrustumLutGrid Grid() {
   FrustumLutGrid grid;
@@ -100,7 +80,7 @@ TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
   ObservationSet observations;
   std::uint64_t index = 0;
   for (const Eigen::Vector3d& albedo : {orange, green}) {
-    const Simulator simulator(board, TwoSpots(), ClearWater(), SurfaceAlbedo::Constant(albedo));
+    const Simulator simulator(board, testing::TwoCosineLights(0.3, 1.0, 1.5), testing::ClearWater(), SurfaceAlbedo::Constant(albedo));
     for (double distance : {0.7, 0.95, 1.25, 1.6, 2.0, 2.4, 2.8}) {
       for (double tilt : {-0.26, 0.26}) {
         const Frame frame = Render(simulator, scene, rays, BoardView(distance, tilt), index++, dir);
@@ -114,11 +94,11 @@ TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
   CalibrationOptions options;
   options.grid = Grid();
   options.levels = {{2, 2}, {4, 3}, {8, 6}};
-  const Simulator weighting(board, PointLightAtCamera(), ClearWater(), SurfaceAlbedo::Constant(orange));
+  const Simulator weighting(board, PointLightAtCamera(), testing::ClearWater(), SurfaceAlbedo::Constant(orange));
   const CalibrationResult result = Calibrate(observations, weighting.TrueLut(camera, options.grid), options);
 
   // Exposure 2 scales the true LUT into image units.
-  const Simulator truth(board, TwoSpots(), ClearWater(), SurfaceAlbedo::Constant(orange));
+  const Simulator truth(board, testing::TwoCosineLights(0.3, 1.0, 1.5), testing::ClearWater(), SurfaceAlbedo::Constant(orange));
   FrustumLut true_lut = truth.TrueLut(camera, options.grid);
   std::vector<double> alpha_errors, beta_errors;
   for (int n = 0; n < options.grid.NumNodes(); ++n) {
@@ -140,7 +120,7 @@ TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
 
   // Held out: a grey board at 1.8 m tilted 20 degrees about x.
   const Eigen::Vector3d grey = Eigen::Vector3d::Constant(0.35);
-  const Simulator held_out(board, TwoSpots(), ClearWater(), SurfaceAlbedo::Constant(grey));
+  const Simulator held_out(board, testing::TwoCosineLights(0.3, 1.0, 1.5), testing::ClearWater(), SurfaceAlbedo::Constant(grey));
   const Frame frame = Render(held_out, scene, rays, BoardView(1.8, 0.35), 99, dir);
   const RestoredImage restored = RestoreImage(frame.image, frame.maps, rays, result.lut, RestorationOptions());
   std::vector<double> errors;

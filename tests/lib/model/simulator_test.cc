@@ -8,6 +8,7 @@
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/model/image_formation.h"
+#include "tests/support/test_scenes.h"
 
 namespace lutex {
 namespace {
@@ -16,27 +17,6 @@ namespace {
 Mesh Floor() { return MakeHeightFieldMesh([](double, double) { return 0.0; }, -50, 50, -50, 50, 2, 2); }
 Rigid3d Above(double height) {
   return CamFromWorldLookingAt(Eigen::Vector3d(0, 0, height), Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(0, -1, 0));
-}
-
-Water ClearWater() {
-  Water water;
-  water.absorption = Eigen::Vector3d(0.35, 0.05, 0.02);
-  water.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
-  water.anisotropy_g = 0.88;
-  return water;
-}
-
-LightRig TwoLights() {
-  LightRig rig;
-  for (double x : {-0.4, 0.4}) {
-    Light light;
-    light.position_in_cam = Eigen::Vector3d(x, 0, 0);
-    light.intensity = Eigen::Vector3d(1.2, 1.1, 1.0);
-    light.profile = BeamProfile::kCosinePower;
-    light.exponent = 2.0;
-    rig.lights.push_back(light);
-  }
-  return rig;
 }
 
 // In air, a point light at the camera, a fronto-parallel plane at distance d: a pixel whose ray meets the
@@ -64,8 +44,8 @@ TEST(Simulator, InAirPointLightOnPlaneIsAnalytic) {
 TEST(Simulator, BackscatterConvergesToBruteForceIntegral) {
   const Mesh floor = Floor();
   const SurfaceAlbedo albedo = SurfaceAlbedo::Constant(Eigen::Vector3d::Constant(0.5));
-  const Water water = ClearWater();
-  const LightRig rig = TwoLights();
+  const Water water = testing::ClearWater();
+  const LightRig rig = testing::TwoCosineLights(0.4, 1.2, 2.0);
   SimulatorOptions fine_options;
   fine_options.backscatter_steps = 4096;
   const Simulator coarse(floor, rig, water, albedo), fine(floor, rig, water, albedo, fine_options);
@@ -138,7 +118,7 @@ TEST(Simulator, RenderObeysTheImageFormationModelForALightAtTheCamera) {
   light.intensity = Eigen::Vector3d(3, 3, 3);
   LightRig rig;
   rig.lights.push_back(light);
-  const Simulator simulator(plane, rig, ClearWater(), albedo);
+  const Simulator simulator(plane, rig, testing::ClearWater(), albedo);
   const Camera camera = Camera::Pinhole(1, 32, 24, 20, 20);
   const Rigid3d cam_from_world = Above(2.0);
   const cv::Mat image = simulator.Render(CameraRays(camera), cam_from_world);
@@ -168,7 +148,7 @@ TEST(Simulator, BackscatterTableMatchesDirectIntegration) {
   const SurfaceAlbedo albedo = SurfaceAlbedo::Constant(Eigen::Vector3d::Constant(0.5));
   SimulatorOptions fine_options;
   fine_options.backscatter_steps = 4096;
-  const Simulator simulator(floor, TwoLights(), ClearWater(), albedo, fine_options);
+  const Simulator simulator(floor, testing::TwoCosineLights(0.4, 1.2, 2.0), testing::ClearWater(), albedo, fine_options);
   const Camera camera = Camera::Pinhole(1, 320, 240, 160, 160);
   const BackscatterTable table = simulator.MakeBackscatterTable(CameraRays(camera));
   for (const Eigen::Vector2d& pixel : {Eigen::Vector2d(3.7, 5.2), Eigen::Vector2d(160.5, 120.5), Eigen::Vector2d(301.3, 77.9)}) {
@@ -183,7 +163,7 @@ TEST(Simulator, BackscatterTableMatchesDirectIntegration) {
 TEST(Simulator, TrueLutNodesAreTheSignalFactorAndBackscatterAtTheNode) {
   const Mesh floor = Floor();
   const SurfaceAlbedo albedo = SurfaceAlbedo::Constant(Eigen::Vector3d::Constant(0.5));
-  const Simulator simulator(floor, TwoLights(), ClearWater(), albedo);
+  const Simulator simulator(floor, testing::TwoCosineLights(0.4, 1.2, 2.0), testing::ClearWater(), albedo);
   const Camera camera = Camera::Pinhole(1, 640, 480, 320, 320);
   FrustumLutGrid grid;
   grid.nx = 4;
@@ -245,8 +225,8 @@ TEST(Simulator, ResultsDoNotDependOnTheThreadCount) {
   one.num_threads = 1;
   two.num_threads = 2;
   const CameraRays rays(Camera::Pinhole(1, 40, 30, 25, 25));
-  const cv::Mat a = Simulator(floor, TwoLights(), ClearWater(), albedo, one).Render(rays, Above(2));
-  const cv::Mat b = Simulator(floor, TwoLights(), ClearWater(), albedo, two).Render(rays, Above(2));
+  const cv::Mat a = Simulator(floor, testing::TwoCosineLights(0.4, 1.2, 2.0), testing::ClearWater(), albedo, one).Render(rays, Above(2));
+  const cv::Mat b = Simulator(floor, testing::TwoCosineLights(0.4, 1.2, 2.0), testing::ClearWater(), albedo, two).Render(rays, Above(2));
   EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
 }
 

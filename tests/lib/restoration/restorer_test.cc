@@ -9,17 +9,10 @@
 #include "lib/geometry/look_at.h"
 #include "lib/model/simulator.h"
 #include "lib/model/synthetic_seafloor.h"
+#include "tests/support/test_scenes.h"
 
 namespace lutex {
 namespace {
-
-Water ClearWater() {
-  Water water;
-  water.absorption = Eigen::Vector3d(0.35, 0.05, 0.02);
-  water.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
-  water.anisotropy_g = 0.88;
-  return water;
-}
 
 struct Errors {
   double median = 0.0, p95 = 0.0;
@@ -33,7 +26,7 @@ Errors RestorationError(const LightRig& rig, double altitude) {
   seafloor_options.size_y = 5;
   seafloor_options.cell_size = 0.05;
   const Mesh seafloor = MakeSyntheticSeafloor(seafloor_options);
-  const Simulator simulator(seafloor, rig, ClearWater(), SurfaceAlbedo::FromVertexColors(seafloor));
+  const Simulator simulator(seafloor, rig, testing::ClearWater(), SurfaceAlbedo::FromVertexColors(seafloor));
   const Camera camera = Camera::Pinhole(1, 320, 240, 160, 160);
   const CameraRays rays(camera);
   const Rigid3d cam_from_world =
