@@ -6,9 +6,17 @@
 namespace lutex {
 namespace {
 
+// Alpha between slabs is compared in the quantity the LUT interpolates (see calibrator.cc): slab k1's
+// alpha times (z_k1 / z_k0)^2 for inverse-square interpolation.
+double SlabScale(const FrustumLut& lut, int k1, int k0) {
+  if (lut.grid().alpha_interpolation != AlphaInterpolation::kInverseSquare) return 1.0;
+  const double ratio = lut.grid().SlabDepth(k1) / lut.grid().SlabDepth(k0);
+  return ratio * ratio;
+}
+
 // Mean absolute difference of one quantity (alpha or beta, per channel) over neighbour pairs.
 template <typename Get>
-Eigen::Vector3d MeanDifference(const FrustumLut& lut, int k0, int k1, bool within, Get get) {
+Eigen::Vector3d MeanDifference(const FrustumLut& lut, int k0, int k1, bool within, bool scale_slabs, Get get) {
   const FrustumLutGrid& grid = lut.grid();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   int count = 0;
@@ -24,7 +32,8 @@ Eigen::Vector3d MeanDifference(const FrustumLut& lut, int k0, int k1, bool withi
           ++count;
         }
       } else {
-        sum += (get(lut.node(i, j, k1)) - get(lut.node(i, j, k0))).cwiseAbs();
+        const double scale = scale_slabs ? SlabScale(lut, k1, k0) : 1.0;
+        sum += (get(lut.node(i, j, k1)) * scale - get(lut.node(i, j, k0))).cwiseAbs();
         ++count;
       }
     }
@@ -57,12 +66,12 @@ SmoothnessWeights ComputeSmoothnessWeights(const FrustumLut& reference, double s
   };
   SmoothnessWeights weights;
   for (int k = 0; k < grid.nz; ++k) {
-    weights.alpha_within.push_back(weight(MeanDifference(reference, k, k, true, alpha), alpha_floor, scale * alpha_factor));
-    weights.beta_within.push_back(weight(MeanDifference(reference, k, k, true, beta), beta_floor, scale));
+    weights.alpha_within.push_back(weight(MeanDifference(reference, k, k, true, false, alpha), alpha_floor, scale * alpha_factor));
+    weights.beta_within.push_back(weight(MeanDifference(reference, k, k, true, false, beta), beta_floor, scale));
     if (k + 1 < grid.nz) {
       weights.alpha_between.push_back(
-          weight(MeanDifference(reference, k, k + 1, false, alpha), alpha_floor, scale * alpha_factor));
-      weights.beta_between.push_back(weight(MeanDifference(reference, k, k + 1, false, beta), beta_floor, scale));
+          weight(MeanDifference(reference, k, k + 1, false, true, alpha), alpha_floor, scale * alpha_factor));
+      weights.beta_between.push_back(weight(MeanDifference(reference, k, k + 1, false, false, beta), beta_floor, scale));
     }
   }
   return weights;

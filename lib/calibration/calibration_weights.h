@@ -9,7 +9,8 @@
 //   w_alpha(N) = scale * alpha_factor / grad_alpha(N),   w_beta(N) = scale / grad_beta(N)
 // with the paper's scale 0.01 and alpha_factor 0.7 (the average scene intensity, which brings alpha and
 // beta to one scale). Where the reference is flat (beta in air) the gradient is floored at 1e-6 of the
-// quantity's largest value.
+// quantity's largest value. With inverse-square alpha interpolation, alpha between slabs is compared as
+// alpha * z^2 (the interpolated quantity), as the calibration's smoothness residuals do.
 //
 // Known colour, per channel: w = 1 / d_v * snr / (e^(0.5 d))^2 with d the distance from the camera,
 // snr = I / (n_shot + n_const), n_shot = 0.01 sqrt(mean_N), n_const = mean_N / (snr_0 * mean_0,green),

@@ -54,6 +54,7 @@ struct ChannelProblemInput {
   const ObservationSet& observations;
   const std::vector<Eigen::Vector3d>& known_color_weights;
   const FrustumLut& level_lut;  // grid of this level (values unused)
+  const FrustumLut& level_reference;  // the weighting LUT on this level: the shape smoothness keeps
   const SmoothnessWeights& smoothness;
   const CalibrationOptions& options;
 };
@@ -97,15 +98,34 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
     for (int j = 0; j < grid.NodesY(); ++j) {
       for (int i = 0; i < grid.NodesX(); ++i) {
         const int here = grid.NodeIndex(i, j, k);
+        // Smoothness keeps the shape of the reference (a point light at the camera in the expected water):
+        // x_here / ref_here = x_there / ref_there, written in x_here's units. A plain difference would
+        // prefer a flat LUT and pull the dim image corners and far slabs towards the bright centre.
+        const auto shape_scale = [&](int there, int component) {
+          const LutNode& a = input.level_reference.node(here);
+          const LutNode& b = input.level_reference.node(there);
+          const double ref_a = component == 0 ? a.alpha[channel] : a.beta[channel];
+          const double ref_b = component == 0 ? b.alpha[channel] : b.beta[channel];
+          return ref_a > 0.0 && ref_b > 0.0 ? ref_a / ref_b : 1.0;
+        };
         const auto add = [&](int there, double alpha_weight, double beta_weight) {
-          problem.AddResidualBlock(SmoothnessResidual::Create(0, alpha_weight), nullptr, block(here), block(there));
+          problem.AddResidualBlock(SmoothnessResidual::Create(0, alpha_weight, 1.0, shape_scale(there, 0)), nullptr,
+                                   block(here), block(there));
           if (!input.options.in_air) {
-            problem.AddResidualBlock(SmoothnessResidual::Create(1, beta_weight), nullptr, block(here), block(there));
+            problem.AddResidualBlock(SmoothnessResidual::Create(1, beta_weight, 1.0, shape_scale(there, 1)), nullptr,
+                                     block(here), block(there));
           }
         };
-        if (i + 1 < grid.NodesX()) add(grid.NodeIndex(i + 1, j, k), input.smoothness.alpha_within[k][channel], input.smoothness.beta_within[k][channel]);
-        if (j + 1 < grid.NodesY()) add(grid.NodeIndex(i, j + 1, k), input.smoothness.alpha_within[k][channel], input.smoothness.beta_within[k][channel]);
-        if (k + 1 < grid.nz) add(grid.NodeIndex(i, j, k + 1), input.smoothness.alpha_between[k][channel], input.smoothness.beta_between[k][channel]);
+        if (i + 1 < grid.NodesX()) {
+          add(grid.NodeIndex(i + 1, j, k), input.smoothness.alpha_within[k][channel], input.smoothness.beta_within[k][channel]);
+        }
+        if (j + 1 < grid.NodesY()) {
+          add(grid.NodeIndex(i, j + 1, k), input.smoothness.alpha_within[k][channel], input.smoothness.beta_within[k][channel]);
+        }
+        if (k + 1 < grid.nz) {
+          add(grid.NodeIndex(i, j, k + 1), input.smoothness.alpha_between[k][channel],
+              input.smoothness.beta_between[k][channel]);
+        }
       }
     }
   }
@@ -169,12 +189,13 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
     if (options.in_air) {
       for (int n = 0; n < grid.NumNodes(); ++n) level_lut.node(n).beta.setZero();
     }
-    const SmoothnessWeights smoothness = ComputeSmoothnessWeights(scaled_reference.Resampled(grid), options.smoothness_scale,
-                                                                  options.alpha_smoothness_factor);
+    const FrustumLut level_reference = scaled_reference.Resampled(grid);
+    const SmoothnessWeights smoothness =
+        ComputeSmoothnessWeights(level_reference, options.smoothness_scale, options.alpha_smoothness_factor);
     CalibrationLevelSummary level_summary;
     level_summary.nx = grid.nx;
     level_summary.ny = grid.ny;
-    const ChannelProblemInput input{observations, known_color_weights, level_lut, smoothness, options};
+    const ChannelProblemInput input{observations, known_color_weights, level_lut, level_reference, smoothness, options};
     ParallelFor(3, options.num_threads, [&](std::size_t channel) {
       const int c = static_cast<int>(channel);
       NodeValues values(static_cast<std::size_t>(grid.NumNodes()));

@@ -23,8 +23,9 @@ ceres::CostFunction* KnownColorResidual::Create(std::vector<double> alpha_weight
                      count);
 }
 
-ceres::CostFunction* SmoothnessResidual::Create(int component, double weight) {
-  return new ceres::AutoDiffCostFunction<SmoothnessResidual, 1, 2, 2>(new SmoothnessResidual{component, weight});
+ceres::CostFunction* SmoothnessResidual::Create(int component, double weight, double scale_a, double scale_b) {
+  return new ceres::AutoDiffCostFunction<SmoothnessResidual, 1, 2, 2>(
+      new SmoothnessResidual{component, weight, scale_a, scale_b});
 }
 
 ceres::CostFunction* PureWaterBoundResidual::Create(std::vector<double> beta_weights, double intensity, double weight) {

@@ -33,19 +33,22 @@ struct KnownColorResidual {
                                      double shading_albedo, double intensity, double weight);
 };
 
-// Smoothness between two neighbouring nodes, paper Eq. 7: w * (x_a - x_b) for x = alpha (component 0)
-// or beta (component 1).
+// Smoothness between two neighbouring nodes, paper Eq. 7: w * (s_a x_a - s_b x_b) for x = alpha
+// (component 0) or beta (component 1). The scales let alpha be smoothed in the quantity the LUT
+// interpolates (alpha z^2 with inverse-square interpolation, whose slabs differ by z^2); 1 otherwise.
 struct SmoothnessResidual {
   int component;
   double weight;
+  double scale_a = 1.0;
+  double scale_b = 1.0;
 
   template <typename T>
   bool operator()(const T* node_a, const T* node_b, T* residual) const {
-    residual[0] = weight * (node_a[component] - node_b[component]);
+    residual[0] = weight * (scale_a * node_a[component] - scale_b * node_b[component]);
     return true;
   }
 
-  static ceres::CostFunction* Create(int component, double weight);
+  static ceres::CostFunction* Create(int component, double weight, double scale_a = 1.0, double scale_b = 1.0);
 };
 
 // Pure water, paper Eq. 9, as a one-sided penalty: w * max(0, sum_i b_i beta_i - I_pw).

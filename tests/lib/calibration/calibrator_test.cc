@@ -3,10 +3,11 @@
 // sides. The recovered LUT is compared with the simulator's true LUT on the nodes the data covers, and a
 // held-out view of a third colour is restored and compared with its true albedo.
 //
-// Status: the bounds below are what the first version of the calibrator achieves (measured: fit RMS
-// 0.004, alpha median relative error 15 %, held-out restoration median 2.9 % / p90 12 %), not yet the
-// accuracy the method allows: alpha oscillates between neighbouring slabs and overshoots at the image
-// corners and the far slab. They guard against regressions while that is worked on.
+// Status: the bounds below record what the calibrator achieves today (measured: fit RMS 0.004, alpha
+// median relative error 11.9 % / p90 37 %, held-out restoration median 1.9 % / p90 5.8 %); they guard
+// against regressions. History: with the paper's plain neighbour differences the numbers were 15 % / 90 %
+// and 2.9 % / 12 %; smoothing the shape relative to the reference LUT instead removed most of the corner
+// and far-slab overshoot.
 
 #include <algorithm>
 #include <cmath>
@@ -137,9 +138,9 @@ TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
               errors[errors.size() * 9 / 10], errors.size());
   EXPECT_LT(result.summary.known_color_rms.maxCoeff(), 0.01);  // the fit explains the data to ~1 8-bit level
   EXPECT_GT(result.summary.covered_fraction, 0.9);
-  EXPECT_LT(alpha_errors[alpha_errors.size() / 2], 0.25);
-  EXPECT_LT(errors[errors.size() / 2], 0.05);
-  EXPECT_LT(errors[errors.size() * 9 / 10], 0.2);
+  EXPECT_LT(alpha_errors[alpha_errors.size() / 2], 0.16);
+  EXPECT_LT(errors[errors.size() / 2], 0.025);
+  EXPECT_LT(errors[errors.size() * 9 / 10], 0.08);
 }
 
 }  // namespace
