@@ -1,15 +1,15 @@
 #pragma once
 
 // Fitting a FrustumLut to observations (paper Sec. 2.2-2.4): known colours, smoothness between the six
-// neighbours of every node, pure-water upper bounds on beta, and positivity of alpha and beta; solved by
-// Ceres. Smoothness departs from the paper's plain differences alpha_a - alpha_b: it keeps the shape of
-// the pre-rendered reference LUT (alpha_a / ref_a = alpha_b / ref_b), because a plain difference prefers a
-// flat LUT and pulled the dim image corners and far slabs towards the bright centre (on simulated boards:
-// held-out restoration error 2.9 % -> 1.9 % median, 12 % -> 5.8 % p90). The weights are the paper's.
-// Solved by
+// neighbours of every node, pure-water upper bounds on beta, and positivity of alpha and beta. Solved by
 // Ceres (Levenberg-Marquardt, sparse Cholesky) for the three channels independently and in parallel,
 // coarse to fine: each level's nx x ny cells are solved starting from the previous level resampled
 // (corner-aligned grids nest exactly, see frustum_lut.h). In air, beta is held at 0.
+//
+// Smoothness departs from the paper's plain differences alpha_a - alpha_b: it keeps the shape of the
+// pre-rendered reference LUT (alpha_a / ref_a = alpha_b / ref_b), because a plain difference prefers a
+// flat LUT and pulled the dim image corners and far slabs towards the bright centre (on simulated boards:
+// held-out restoration error 2.9 % -> 1.9 % median, 12 % -> 5.8 % p90). The weights are the paper's.
 
 #include <utility>
 #include <vector>
