@@ -6,6 +6,7 @@
 #include <iostream>
 #include <string>
 
+#include "colmap_integration/calibrate_command.h"
 #include "colmap_integration/raycast_command.h"
 #include "colmap_integration/restore_command.h"
 #include "colmap_integration/simulate_command.h"
@@ -19,6 +20,7 @@ struct Command {
 };
 
 const Command kCommands[] = {
+    {"calibrate", &lutex::RunCalibrateCommand, "fit the LUT from images of known-colour targets (+ pure water)"},
     {"raycast", &lutex::RunRaycastCommand, "per-image depth and normal maps of a mesh (COLMAP .bin + previews)"},
     {"restore", &lutex::RunRestoreCommand, "restore images to albedo with a calibrated LUT, with confidence maps"},
     {"simulate", &lutex::RunSimulateCommand, "render a scene description into a COLMAP workspace with ground truth"},

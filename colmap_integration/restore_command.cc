@@ -16,7 +16,7 @@ int RunRestoreCommand(int argc, char** argv) {
       "Restores every registered image of the COLMAP workspace W to albedo with the LUT L (lutex calibrate):\n"
       "per pixel, the mesh gives the surface point and its shading cos_theta, the LUT gives alpha and beta,\n"
       "and albedo = (I - beta) / (alpha cos_theta). Writes DIR/NAME (default DIR: W/lutex/restored) and an\n"
-      "8-bit confidence map DIR/confidence/NAME.png per image (255 = fully trusted; low where the signal is\n"
+      "8-bit confidence map DIR_confidence/NAME.png per image (255 = fully trusted; low where the signal is\n"
       "weak, the pixel saturated, or the surface seen at a grazing angle). Pixels without a surface are 0.\n"
       "Input encoding: srgb8 (8-bit sRGB, cameras' JPEGs; the default), linear16 (16-bit linear PNG/TIFF) or\n"
       "float (EXR). Output encoding: same (as the input; the default), srgb8, linear16 or float.");
@@ -33,7 +33,7 @@ int RunRestoreCommand(int argc, char** argv) {
   std::cout << "restore: " << summary.num_images << " images in " << std::fixed << std::setprecision(1)
             << summary.seconds << " s; mean confidence " << std::setprecision(2) << summary.mean_confidence << "\n"
             << "  restored images:  " << summary.output.string() << "\n"
-            << "  confidence maps:  " << (summary.output / "confidence").string() << "\n";
+            << "  confidence maps:  " << summary.confidence_output.string() << "\n";
   return 0;
 }
 

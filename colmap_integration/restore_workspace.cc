@@ -71,6 +71,8 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
 
   RestoreSummary summary;
   summary.output = options.output.empty() ? workspace.OutputDir() / "restored" : options.output;
+  summary.confidence_output = summary.output;
+  summary.confidence_output += "_confidence";
   double confidence_sum = 0.0;
   std::size_t surface_pixels = 0;
   std::mutex summary_mutex;
@@ -88,7 +90,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
     const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
     const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration);
     WriteLinearImage(restored.albedo, RestoredPath(summary.output, image.name, output_encoding), output_encoding);
-    fs::path confidence_path = summary.output / "confidence" / image.name;
+    fs::path confidence_path = summary.confidence_output / image.name;
     confidence_path.replace_extension(".png");
     // Confidence is a plain fraction, stored linearly in 8 bits.
     cv::Mat confidence_bgr;

@@ -4,10 +4,12 @@
 // plus a per-channel confidence map (lib/restoration/restorer.h). Images are streamed: each is read,
 // ray-cast, restored and written by one thread, so memory does not grow with the number of images.
 //
-// Output, under `output` (default W/lutex/restored):
-//   NAME                       the restored image, in `output_encoding` (.png when 16-bit or float
-//                              output would not fit the input's extension, e.g. .jpg)
-//   confidence/NAME.png        8-bit RGB confidence, 255 = 1
+// Output:
+//   OUTPUT/NAME                the restored image, in `output_encoding` (.png when 16-bit or float
+//                              output would not fit the input's extension, e.g. .jpg); OUTPUT defaults
+//                              to W/lutex/restored
+//   OUTPUT_confidence/NAME.png 8-bit RGB confidence, 255 = 1. A sibling, not a subfolder, so tools that
+//                              collect restored images by name under OUTPUT do not pick these up.
 // Pixels without a surface are 0 with confidence 0.
 
 #include <cstddef>
@@ -37,6 +39,7 @@ struct RestoreOptions {
 
 struct RestoreSummary {
   std::filesystem::path output;
+  std::filesystem::path confidence_output;
   std::size_t num_images = 0;
   double mean_confidence = 0.0;  // over pixels with a surface, all channels
   double seconds = 0.0;

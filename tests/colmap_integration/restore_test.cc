@@ -63,7 +63,7 @@ TEST(Restore, TrueLutRestoresTheSimulatedWorkspace) {
   for (const auto& [id, image] : ReadSparseModel(workspace / "sparse" / "0").images) {
     const cv::Mat restored = ReadLinearImage(summary.output / image.name, ImageEncoding::kLinear16);
     const cv::Mat truth = ReadLinearImage(workspace / "ground_truth" / "albedo" / image.name, ImageEncoding::kLinear16);
-    const cv::Mat confidence = cv::imread((summary.output / "confidence" / image.name).string());
+    const cv::Mat confidence = cv::imread((summary.confidence_output / image.name).string());
     ASSERT_FALSE(confidence.empty());
     for (int row = 0; row < restored.rows; ++row) {
       for (int col = 0; col < restored.cols; ++col) {

@@ -1,0 +1,180 @@
+#include "colmap_integration/calibrate_workspace.h"
+
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "colmap_integration/images_by_camera.h"
+#include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/workspace.h"
+#include "lib/calibration/targets.h"
+#include "lib/geometry/mesh_io.h"
+#include "lib/lut/lut_file.h"
+#include "lib/lut/lut_slab_images.h"
+#include "lib/model/simulator.h"
+#include "lib/raycast/raycast_scene.h"
+#include "lib/util/file_streams.h"
+#include "lib/util/logging.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Water ReferenceWater(const CalibrateOptions& options) {
+  Water water;
+  if (options.in_air) return water;
+  if (options.reference_water == "clear") {
+    water.absorption = Eigen::Vector3d(0.35, 0.05, 0.02);
+    water.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
+  } else {
+    water.absorption = Eigen::Vector3d(0.45, 0.12, 0.25);
+    water.scattering = Eigen::Vector3d(0.35, 0.4, 0.38);
+  }
+  water.anisotropy_g = 0.9;
+  return water;
+}
+
+// Coarse-to-fine levels ending at nx x ny: a tenth and a half of it where they divide (paper: 4x3, 20x15).
+std::vector<std::pair<int, int>> DefaultLevels(int nx, int ny) {
+  std::vector<std::pair<int, int>> levels;
+  for (int divisor : {10, 2}) {
+    if (nx % divisor == 0 && ny % divisor == 0 && nx / divisor >= 1 && ny / divisor >= 1) {
+      levels.emplace_back(nx / divisor, ny / divisor);
+    }
+  }
+  levels.emplace_back(nx, ny);
+  return levels;
+}
+
+const Camera& SingleImageSize(const SparseModel& model, const fs::path& where) {
+  const Camera& first = model.cameras.begin()->second;
+  for (const auto& [id, camera] : model.cameras) {
+    if (camera.width != first.width || camera.height != first.height) {
+      throw std::runtime_error(where.string() + ": cameras of different image sizes; a LUT is for one size");
+    }
+  }
+  return first;
+}
+
+}  // namespace
+
+void CalibrateOptions::Check() const {
+  if (workspace.empty() || mesh.empty() || targets.empty()) {
+    throw std::invalid_argument("--workspace, --mesh and --targets are required");
+  }
+  if (reference_water != "clear" && reference_water != "coastal") {
+    throw std::invalid_argument("--reference-water must be clear or coastal");
+  }
+  if (pure_water_stride < 1) throw std::invalid_argument("the pure-water stride must be at least 1");
+  sampling.Check();
+}
+
+CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
+  options.Check();
+  const Workspace workspace = FindWorkspace(options.workspace);
+  const SparseModel model = ReadSparseModel(workspace.sparse_dir);
+  const std::vector<Target> targets = ReadTargets(options.targets);
+  const Mesh mesh = ReadMesh(options.mesh);
+  const RaycastScene scene(mesh);
+  const Camera& camera = SingleImageSize(model, workspace.sparse_dir);
+
+  CalibrationOptions calibration = options.calibration;
+  calibration.grid.nx = options.nx;
+  calibration.grid.ny = options.ny;
+  calibration.grid.nz = options.nz;
+  calibration.grid.z_near = options.z_near;
+  calibration.grid.z_far = options.z_far;
+  calibration.grid.image_width = static_cast<int>(camera.width);
+  calibration.grid.image_height = static_cast<int>(camera.height);
+  calibration.levels = DefaultLevels(options.nx, options.ny);
+  calibration.in_air = options.in_air;
+  calibration.num_threads = options.num_threads;
+  calibration.Check();
+
+  // Known colours, per image in parallel, gathered in image order so the solve is the same at any
+  // thread count.
+  std::map<std::uint32_t, std::vector<KnownColorObservation>> per_image;
+  std::mutex per_image_mutex;
+  ForEachImageWithRays(model, options.num_threads, "calibration images", [&](const Image& image, const CameraRays& rays) {
+    const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
+    GeometryMapsOptions map_options;
+    map_options.face_id = false;
+    map_options.num_threads = 1;
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
+    const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
+    std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, options.sampling);
+    if (observations.empty()) LogWarning() << image.name << ": no target pixels found; the image is skipped";
+    std::lock_guard<std::mutex> lock(per_image_mutex);
+    per_image[image.image_id] = std::move(observations);
+  });
+  ObservationSet observations;
+  for (auto& [id, list] : per_image) {
+    observations.known_colors.insert(observations.known_colors.end(), list.begin(), list.end());
+  }
+  if (observations.known_colors.empty()) {
+    throw std::runtime_error(options.targets.string() + ": no calibration image shows any target pixel");
+  }
+
+  CalibrateSummary summary;
+  summary.num_images = model.images.size();
+  if (!options.pure_water.empty()) {
+    const Workspace water_workspace = FindWorkspace(options.pure_water);
+    const SparseModel water_model = ReadSparseModel(water_workspace.sparse_dir);
+    for (const auto& [id, image] : water_model.images) {
+      const Camera& water_camera = water_model.cameras.at(image.camera_id);
+      if (water_camera.width != camera.width || water_camera.height != camera.height) {
+        throw std::runtime_error((water_workspace.images_dir / image.name).string() +
+                                 ": pure-water image of another size than the calibration images");
+      }
+      const cv::Mat observed = ReadLinearImage(water_workspace.images_dir / image.name, options.input_encoding);
+      for (int row = options.pure_water_stride / 2; row < observed.rows; row += options.pure_water_stride) {
+        for (int col = options.pure_water_stride / 2; col < observed.cols; col += options.pure_water_stride) {
+          const cv::Vec3f value = observed.at<cv::Vec3f>(row, col);
+          PureWaterObservation observation;
+          observation.pixel = Eigen::Vector2d(col + 0.5, row + 0.5);
+          observation.intensity = Eigen::Vector3d(value[0], value[1], value[2]);
+          observations.pure_water.push_back(observation);
+        }
+      }
+      ++summary.num_pure_water_images;
+    }
+  }
+  LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour and "
+            << observations.pure_water.size() << " pure-water observations";
+
+  const Mesh no_geometry;
+  const Simulator reference_simulator(no_geometry, PointLightAtCamera(), ReferenceWater(options),
+                                      SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
+  const CalibrationResult result =
+      Calibrate(observations, reference_simulator.TrueLut(camera, calibration.grid), calibration);
+
+  summary.lut = options.output.empty() ? workspace.OutputDir() / "calibration" / "lut.lut" : options.output;
+  summary.calibration = result.summary;
+  WriteLut(result.lut, summary.lut);
+  WriteLut(result.coverage, summary.lut.parent_path() / "coverage.lut");
+  WriteLutSlabImages(result.lut, summary.lut.parent_path() / "slabs");
+  nlohmann::json json;
+  json["known_color_observations"] = result.summary.num_known_color;
+  json["pure_water_observations"] = result.summary.num_pure_water;
+  json["known_color_rms"] = {result.summary.known_color_rms.x(), result.summary.known_color_rms.y(),
+                             result.summary.known_color_rms.z()};
+  json["pure_water_max_violation"] = {result.summary.pure_water_max_violation.x(),
+                                      result.summary.pure_water_max_violation.y(),
+                                      result.summary.pure_water_max_violation.z()};
+  json["covered_fraction"] = result.summary.covered_fraction;
+  json["seconds"] = result.summary.seconds;
+  for (const CalibrationLevelSummary& level : result.summary.levels) {
+    json["levels"].push_back({{"nx", level.nx}, {"ny", level.ny},
+                              {"iterations", {level.iterations[0], level.iterations[1], level.iterations[2]}},
+                              {"final_cost", {level.final_cost[0], level.final_cost[1], level.final_cost[2]}}});
+  }
+  WriteFileAtomically(summary.lut.parent_path() / "calibration_summary.json", std::ios::out,
+                      [&json](std::ostream& stream) { stream << json.dump(2) << "\n"; });
+  return summary;
+}
+
+}  // namespace lutex
