@@ -31,13 +31,15 @@ int RunCalibrateCommand(int argc, char** argv) {
   parser.AddInt("lut-ny", &options.ny, "LUT cells down the image.");
   parser.AddInt("lut-nz", &options.nz, "LUT slabs in depth.");
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
-  std::string z_near = "0.5", z_far = "5.0";
+  std::string z_near = "0.5", z_far = "5.0", smoothness = "0.01";
+  parser.AddString("smoothness", &smoothness, "Smoothness weight relative to observations (paper: 0.01).");
   parser.AddString("z-near", &z_near, "Nearest slab's planar depth (scene units).");
   parser.AddString("z-far", &z_far, "Farthest slab's planar depth.");
   if (!parser.Parse(argc, argv, 2)) return 0;
   options.input_encoding = ParseImageEncoding(input_encoding);
   options.z_near = std::stod(z_near);
   options.z_far = std::stod(z_far);
+  options.calibration.smoothness_scale = std::stod(smoothness);
   const CalibrateSummary summary = CalibrateWorkspace(options);
   const CalibrationSummary& c = summary.calibration;
   std::cout << std::fixed << std::setprecision(4) << "calibrate: " << summary.num_images << " images, "

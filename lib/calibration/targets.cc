@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lib/image/image_io.h"
+#include "lib/util/logging.h"
 
 namespace lutex {
 namespace {
@@ -59,6 +60,10 @@ std::vector<Target> ReadTargets(const std::filesystem::path& path) {
     Target target;
     target.name = entry.value("name", entry.contains("id") ? entry["id"].dump() : "target " + std::to_string(t));
     const std::string where = path.string() + ": target " + target.name;
+    if (!entry.contains("corners_world")) {
+      LogWarning() << where << " has no corners_world (not a planar target); skipped";
+      continue;
+    }
     try {
       if (entry.contains("albedo_linear")) {
         for (int c = 0; c < 3; ++c) target.albedo[c] = entry["albedo_linear"].at(c).get<double>();
@@ -93,6 +98,7 @@ std::vector<Target> ReadTargets(const std::filesystem::path& path) {
     }
     targets.push_back(target);
   }
+  if (targets.empty()) throw std::runtime_error(path.string() + ": no planar target (with corners_world)");
   return targets;
 }
 
