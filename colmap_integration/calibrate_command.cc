@@ -1,6 +1,9 @@
 #include "colmap_integration/calibrate_command.h"
 
+#include <algorithm>
 #include <iomanip>
+#include <sstream>
+#include <stdexcept>
 #include <iostream>
 
 #include "colmap_integration/calibrate_workspace.h"
@@ -31,7 +34,10 @@ int RunCalibrateCommand(int argc, char** argv) {
   parser.AddInt("lut-ny", &options.ny, "LUT cells down the image.");
   parser.AddInt("lut-nz", &options.nz, "LUT slabs in depth.");
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
-  std::string z_near = "0.5", z_far = "5.0", smoothness = "0.01";
+  std::string z_near = "0.5", z_far = "5.0", smoothness = "0.01", shading_light = "0,0,0";
+  parser.AddString("shading-light", &shading_light,
+                   "x,y,z in the camera frame (metres) where shading puts the light: the camera centre (the paper),\n"
+                   "      or a single flash's position. Recorded in the LUT; lutex restore follows it.");
   parser.AddString("smoothness", &smoothness, "Smoothness weight relative to observations (paper: 0.01).");
   parser.AddString("z-near", &z_near, "Nearest slab's planar depth (scene units).");
   parser.AddString("z-far", &z_far, "Farthest slab's planar depth.");
@@ -40,6 +46,13 @@ int RunCalibrateCommand(int argc, char** argv) {
   options.z_near = std::stod(z_near);
   options.z_far = std::stod(z_far);
   options.calibration.smoothness_scale = std::stod(smoothness);
+  {
+    std::replace(shading_light.begin(), shading_light.end(), ',', ' ');
+    std::istringstream fields(shading_light);
+    if (!(fields >> options.shading_light_in_cam.x() >> options.shading_light_in_cam.y() >> options.shading_light_in_cam.z())) {
+      throw std::invalid_argument("--shading-light expects x,y,z");
+    }
+  }
   const CalibrateSummary summary = CalibrateWorkspace(options);
   const CalibrationSummary& c = summary.calibration;
   std::cout << std::fixed << std::setprecision(4) << "calibrate: " << summary.num_images << " images, "

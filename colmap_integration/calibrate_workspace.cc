@@ -90,6 +90,9 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   calibration.grid.z_far = options.z_far;
   calibration.grid.image_width = static_cast<int>(camera.width);
   calibration.grid.image_height = static_cast<int>(camera.height);
+  calibration.grid.shading_light_in_cam = options.shading_light_in_cam;
+  KnownColorSamplingOptions sampling = options.sampling;
+  sampling.shading_light_in_cam = options.shading_light_in_cam;
   calibration.levels = DefaultLevels(options.nx, options.ny);
   calibration.in_air = options.in_air;
   calibration.num_threads = options.num_threads;
@@ -106,7 +109,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
     map_options.num_threads = 1;
     const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
     const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
-    std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, options.sampling);
+    std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
     if (observations.empty()) LogWarning() << image.name << ": no target pixels found; the image is skipped";
     std::lock_guard<std::mutex> lock(per_image_mutex);
     per_image[image.image_id] = std::move(observations);
@@ -147,7 +150,9 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
             << observations.pure_water.size() << " pure-water observations";
 
   const Mesh no_geometry;
-  const Simulator reference_simulator(no_geometry, PointLightAtCamera(), ReferenceWater(options),
+  LightRig reference_rig = PointLightAtCamera();
+  reference_rig.lights[0].position_in_cam = options.shading_light_in_cam;
+  const Simulator reference_simulator(no_geometry, reference_rig, ReferenceWater(options),
                                       SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
   const CalibrationResult result =
       Calibrate(observations, reference_simulator.TrueLut(camera, calibration.grid), calibration);

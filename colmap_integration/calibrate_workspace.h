@@ -31,6 +31,9 @@ struct CalibrateOptions {
   bool in_air = false;
   // The water of the reference LUT that sets the weights: "clear" or "coastal" (ignored in air).
   std::string reference_water = "clear";
+  // Where shading puts the light (camera frame, metres): the camera centre (the paper), or a single
+  // flash's position. Recorded in the LUT; the reference LUT's point light sits there too.
+  Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
   KnownColorSamplingOptions sampling;
   int pure_water_stride = 8;
   CalibrationOptions calibration;  // levels and weights; grid and in_air are set from the fields above

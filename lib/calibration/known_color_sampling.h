@@ -8,6 +8,8 @@
 
 #include <opencv2/core.hpp>
 
+#include <Eigen/Core>
+
 #include "lib/calibration/observations.h"
 #include "lib/raycast/camera_rays.h"
 #include "lib/raycast/geometry_maps.h"
@@ -20,6 +22,8 @@ struct KnownColorSamplingOptions {
   double min_cos_theta = 0.3;      // about 73 degrees
   int edge_margin = 2;             // pixels around a sample that must share its albedo and surface
   double max_relative_depth_step = 0.02;
+  // Where the light is taken to be for cos_theta (image_formation.h); must match the restoration's.
+  Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
 
   void Check() const;
 };

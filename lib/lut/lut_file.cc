@@ -54,6 +54,9 @@ FrustumLut ReadLut(std::istream& stream) {
       throw std::runtime_error("unknown alpha_interpolation '" + interpolation + "' (expected trilinear or inverse_square)");
     }
     grid.image_width = header.at("image_width").get<int>();
+    if (header.contains("shading_light_in_cam")) {
+      for (int c = 0; c < 3; ++c) grid.shading_light_in_cam[c] = header["shading_light_in_cam"].at(c).get<double>();
+    }
     grid.image_height = header.at("image_height").get<int>();
     if (header.at("value_type").get<std::string>() != "float64 little-endian") {
       throw std::runtime_error("unsupported value_type");
@@ -101,6 +104,8 @@ void WriteLut(const FrustumLut& lut, std::ostream& stream) {
   header["alpha_interpolation"] =
       grid.alpha_interpolation == AlphaInterpolation::kTrilinear ? "trilinear" : "inverse_square";
   header["image_width"] = grid.image_width;
+  header["shading_light_in_cam"] = {grid.shading_light_in_cam.x(), grid.shading_light_in_cam.y(),
+                                    grid.shading_light_in_cam.z()};
   header["image_height"] = grid.image_height;
   header["node_layout"] = kLayout;
   header["value_type"] = "float64 little-endian";

@@ -11,7 +11,8 @@
 //   then exactly num_values = (nx + 1) (ny + 1) nz 6 binary float64 values, nothing after them.
 //
 // Node (i, j, k) sits at pixel (i / nx * image_width, j / ny * image_height) and planar depth slab k;
-// alpha_interpolation is "trilinear" or "inverse_square" (alpha * z^2 interpolated; see frustum_lut.h). Readers reject other versions, wrong value counts, truncation and non-finite values.
+// alpha_interpolation is "trilinear" or "inverse_square" (alpha * z^2 interpolated; see frustum_lut.h);
+// shading_light_in_cam (optional, default [0, 0, 0]) is where the model's shading puts the light. Readers reject other versions, wrong value counts, truncation and non-finite values.
 
 #include <filesystem>
 #include <istream>

@@ -37,7 +37,7 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
       const Eigen::Vector3d direction = rays.Direction(col, row).cast<double>();
       const Eigen::Vector3d point = (depth / direction.z()) * direction;
       const cv::Vec3f n = maps.normal.at<cv::Vec3f>(row, col);
-      const double cos_theta = ShadingCosine(point, Eigen::Vector3d(n[0], n[1], n[2]));
+      const double cos_theta = ShadingCosine(point, Eigen::Vector3d(n[0], n[1], n[2]), lut.grid().shading_light_in_cam);
       const double u = col + 0.5, v = row + 0.5;
       const LutNode node = lut.Lookup(u, v, depth);
       const cv::Vec3f observed = image.at<cv::Vec3f>(row, col);

@@ -143,5 +143,69 @@ TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
   EXPECT_LT(errors[errors.size() * 9 / 10], 0.08);
 }
 
+// In air with one known colour (paper Sec. 4.1-4.2): a white board (albedo 0.8) at 0.5-2.5 m, tilted,
+// with a flash 0.1 m to the right of the camera, as in the shared inair_whiteboard data; beta is held at
+// 0. A held-out red board must be restored within 3 % (median over its pixels). Shading is computed
+// towards the known flash: with the paper's camera-centred shading the fit RMS was 0.0066 and the red
+// board's error 5.2 %; with the flash on the camera centre (model exact) 0.0038 and 2.45 %, the noise floor.
+TEST(Calibrator, InAirOneKnownColourRestoresARedBoard) {
+  testing::TempDir dir;
+  const Mesh board = MakeHeightFieldMesh([](double, double) { return 0.0; }, -10, 10, -10, 10, 2, 2);
+  const RaycastScene scene(board);
+  const Camera camera = Camera::Pinhole(1, kWidth, kHeight, 100, 100);
+  const CameraRays rays(camera);
+  LightRig flash;
+  Light light;
+  light.position_in_cam = Eigen::Vector3d(0.1, 0, 0);
+  light.intensity = Eigen::Vector3d::Constant(0.3);
+  flash.lights.push_back(light);
+  const Eigen::Vector3d white = Eigen::Vector3d::Constant(0.8);
+  const Simulator simulator(board, flash, Water::Air(), SurfaceAlbedo::Constant(white));
+  KnownColorSamplingOptions sampling;
+  sampling.shading_light_in_cam = light.position_in_cam;
+  ObservationSet observations;
+  std::uint64_t index = 200;
+  for (double distance : {0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 1.7, 1.9, 2.1, 2.3, 2.5}) {
+    for (double tilt : {-0.2, 0.2}) {
+      const Frame frame = Render(simulator, scene, rays, BoardView(distance, tilt), index++, dir);
+      const cv::Mat known(kHeight, kWidth, CV_32FC3, cv::Scalar(white.x(), white.y(), white.z()));
+      for (const KnownColorObservation& observation : SampleKnownColors(frame.image, known, frame.maps, rays, sampling)) {
+        observations.known_colors.push_back(observation);
+      }
+    }
+  }
+  CalibrationOptions options;
+  options.grid = Grid();
+  options.grid.z_near = 0.45;
+  options.grid.z_far = 2.6;
+  options.levels = {{2, 2}, {4, 3}, {8, 6}};
+  options.in_air = true;
+  options.grid.shading_light_in_cam = light.position_in_cam;
+  // The reference is rendered for a point light where shading assumes it.
+  LightRig reference_rig = PointLightAtCamera();
+  reference_rig.lights[0].position_in_cam = light.position_in_cam;
+  const Simulator weighting(board, reference_rig, Water::Air(), SurfaceAlbedo::Constant(white));
+  const CalibrationResult result = Calibrate(observations, weighting.TrueLut(camera, options.grid), options);
+  for (int n = 0; n < options.grid.NumNodes(); ++n) ASSERT_EQ(result.lut.node(n).beta, Eigen::Vector3d::Zero());
+
+  const Eigen::Vector3d red(0.578, 0.021, 0.021);
+  const Simulator held_out(board, flash, Water::Air(), SurfaceAlbedo::Constant(red));
+  const Frame frame = Render(held_out, scene, rays, BoardView(1.2, 0.3), 299, dir);
+  const RestoredImage restored = RestoreImage(frame.image, frame.maps, rays, result.lut, RestorationOptions());
+  std::vector<double> errors;
+  for (int row = 0; row < kHeight; ++row) {
+    for (int col = 0; col < kWidth; ++col) {
+      if (restored.confidence.at<cv::Vec3f>(row, col)[0] < 0.5f) continue;
+      errors.push_back(std::abs(restored.albedo.at<cv::Vec3f>(row, col)[0] - red.x()));
+    }
+  }
+  ASSERT_GT(errors.size(), 5000u);
+  std::sort(errors.begin(), errors.end());
+  std::printf("in air: observations %zu, rms %.4f, red board median error %.4f, p90 %.4f\n",
+              observations.known_colors.size(), result.summary.known_color_rms.x(), errors[errors.size() / 2],
+              errors[errors.size() * 9 / 10]);
+  EXPECT_LT(errors[errors.size() / 2], 0.03);
+}
+
 }  // namespace
 }  // namespace lutex
