@@ -5,33 +5,20 @@
 #include <stdexcept>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "colmap_integration/colmap_array.h"
 #include "colmap_integration/images_by_camera.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/workspace.h"
 #include "lib/geometry/mesh_io.h"
+#include "lib/image/image_io.h"
 #include "lib/raycast/geometry_previews.h"
 #include "lib/raycast/raycast_scene.h"
-#include "lib/util/atomic_output.h"
 #include "lib/util/logging.h"
 
 namespace lutex {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-void WritePng(const cv::Mat& picture, const fs::path& path) {
-  AtomicOutputFile output(path);
-  if (!cv::imwrite(output.temporary_path().string(), picture)) {
-    throw std::runtime_error(path.string() + ": could not write the PNG");
-  }
-  output.Commit();
-}
-
-}  // namespace
 
 void RaycastOptions::Check() const {
   if (workspace.empty()) throw std::invalid_argument("--workspace is required");
@@ -64,8 +51,8 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
     WriteColmapArray(ReplaceNanWithZero(maps.depth), summary.output / "depth_maps" / (image.name + ".geometric.bin"));
     WriteColmapArray(ReplaceNanWithZero(maps.normal), summary.output / "normal_maps" / (image.name + ".geometric.bin"));
     if (options.write_previews) {
-      WritePng(DepthPreview(maps.depth), summary.output / "previews" / (image.name + ".depth.png"));
-      WritePng(NormalPreview(maps.normal), summary.output / "previews" / (image.name + ".normal.png"));
+      WriteEncodedImage(DepthPreview(maps.depth), summary.output / "previews" / (image.name + ".depth.png"));
+      WriteEncodedImage(NormalPreview(maps.normal), summary.output / "previews" / (image.name + ".normal.png"));
     }
     std::lock_guard<std::mutex> lock(hit_fractions_mutex);
     hit_fractions.push_back(hit_fraction);

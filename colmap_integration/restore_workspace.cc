@@ -4,7 +4,6 @@
 #include <mutex>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "colmap_integration/images_by_camera.h"
@@ -13,7 +12,6 @@
 #include "lib/geometry/mesh_io.h"
 #include "lib/lut/lut_file.h"
 #include "lib/raycast/raycast_scene.h"
-#include "lib/util/atomic_output.h"
 #include "lib/util/logging.h"
 
 namespace lutex {
@@ -96,11 +94,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
     cv::Mat confidence_bgr;
     cv::cvtColor(restored.confidence, confidence_bgr, cv::COLOR_RGB2BGR);
     confidence_bgr.convertTo(confidence_bgr, CV_8UC3, 255.0);
-    AtomicOutputFile confidence_file(confidence_path);
-    if (!cv::imwrite(confidence_file.temporary_path().string(), confidence_bgr)) {
-      throw std::runtime_error(confidence_path.string() + ": could not write the confidence map");
-    }
-    confidence_file.Commit();
+    WriteEncodedImage(confidence_bgr, confidence_path);
     const int surfaces = cv::countNonZero(maps.depth == maps.depth);
     const cv::Scalar total = cv::sum(restored.confidence);
     std::lock_guard<std::mutex> lock(summary_mutex);

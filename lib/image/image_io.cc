@@ -137,15 +137,17 @@ cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding) {
   return encoded;
 }
 
-void WriteLinearImage(const cv::Mat& linear_rgb, const std::filesystem::path& path, ImageEncoding encoding) {
+void WriteEncodedImage(const cv::Mat& picture, const std::filesystem::path& path) {
   setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
-  const cv::Mat encoded = EncodeLinearImage(linear_rgb, encoding);
   AtomicOutputFile output(path);
-  if (!cv::imwrite(output.temporary_path().string(), encoded)) {
-    throw std::runtime_error(path.string() + ": could not write the image (does the extension support " +
-                             ImageEncodingName(encoding) + "?)");
+  if (!cv::imwrite(output.temporary_path().string(), picture)) {
+    throw std::runtime_error(path.string() + ": could not write the image (does the extension suit its bit depth?)");
   }
   output.Commit();
+}
+
+void WriteLinearImage(const cv::Mat& linear_rgb, const std::filesystem::path& path, ImageEncoding encoding) {
+  WriteEncodedImage(EncodeLinearImage(linear_rgb, encoding), path);
 }
 
 }  // namespace lutex

@@ -32,6 +32,10 @@ cv::Mat ReadLinearImage(const std::filesystem::path& path, ImageEncoding encodin
 // Encodes linear RGB CV_32FC3 and writes it (temporary name, then rename).
 void WriteLinearImage(const cv::Mat& linear_rgb, const std::filesystem::path& path, ImageEncoding encoding);
 
+// Writes an already encoded picture (8-bit or 16-bit, OpenCV's BGR order; format by extension) to a
+// temporary name and renames it; throws naming the path when OpenCV cannot write it.
+void WriteEncodedImage(const cv::Mat& picture, const std::filesystem::path& path);
+
 // The encoded 8-bit BGR or 16-bit BGR picture that WriteLinearImage would write (for tests and previews).
 cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding);
 

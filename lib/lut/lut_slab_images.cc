@@ -4,9 +4,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 
-#include "lib/util/atomic_output.h"
+#include "lib/image/image_io.h"
 
 namespace lutex {
 
@@ -48,11 +47,7 @@ void WriteLutSlabImages(const FrustumLut& lut, const std::filesystem::path& fold
     for (const auto& [kind, picture] : {std::pair<const char*, const cv::Mat&>("alpha", images.alpha[k]),
                                         std::pair<const char*, const cv::Mat&>("beta", images.beta[k])}) {
       std::snprintf(name, sizeof(name), "slab_%02zu_%s.png", k, kind);
-      AtomicOutputFile output(folder / name);
-      if (!cv::imwrite(output.temporary_path().string(), picture)) {
-        throw std::runtime_error((folder / name).string() + ": could not write the PNG");
-      }
-      output.Commit();
+      WriteEncodedImage(picture, folder / name);
     }
   }
 }
