@@ -24,6 +24,12 @@ struct GeometryMapsOptions {
   bool normal = true;
   bool face_id = true;
   bool barycentrics = false;
+  // Cast every second pixel in each direction first; where the four corners of a 2x2 block hit the same
+  // triangle, intersect the pixels between them with that triangle's plane analytically (exact for any
+  // camera model), and cast the rest. About 3x fewer rays on meshes whose triangles span several pixels;
+  // a surface thinner than two pixels that falls entirely between four samples on one triangle in
+  // front of it is the one thing it can miss.
+  bool adaptive = true;
   // Threads over tiles of the image; <= 0 means all cores. Results do not depend on it.
   int num_threads = 0;
 };

@@ -38,6 +38,9 @@ struct RaycastScene::Impl {
   RTCScene scene = nullptr;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // world point that is (0, 0, 0) for Embree
   std::size_t num_faces = 0;
+  // The mesh in double precision relative to `origin`, for analytic plane intersections.
+  std::vector<Eigen::Vector3d> local_vertices;
+  std::vector<Mesh::Face> faces;
   std::mutex error_mutex;
   std::string first_error;
 
@@ -87,7 +90,10 @@ RaycastScene::RaycastScene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     impl_->ThrowIfError("allocate the mesh buffers");
     throw std::runtime_error("Embree failed to allocate the mesh buffers");
   }
+  impl_->faces = mesh.faces;
+  impl_->local_vertices.reserve(mesh.vertices.size());
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    impl_->local_vertices.push_back(mesh.vertices[i] - impl_->origin);
     const Eigen::Vector3f local = (mesh.vertices[i] - impl_->origin).cast<float>();
     std::copy(local.data(), local.data() + 3, vertices + 3 * i);
   }
@@ -135,6 +141,18 @@ RayHit RaycastScene::Intersect(const Eigen::Vector3d& origin_in_world,
   return result;
 }
 
+namespace {
+
+// What one ray found, before it is written into the maps.
+struct PixelHit {
+  float distance = 0.0f;  // along the unit ray
+  int face = -1;
+  float b1 = 0.0f, b2 = 0.0f;
+  Eigen::Vector3f normal_in_world = Eigen::Vector3f::Zero();  // not normalised
+};
+
+}  // namespace
+
 GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
                                   const GeometryMapsOptions& options) const {
   if (!cam_from_world.IsValid()) {
@@ -148,53 +166,140 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
   if (options.normal) maps.normal = cv::Mat(height, width, CV_32FC3, cv::Scalar::all(nan));
   if (options.face_id) maps.face_id = cv::Mat(height, width, CV_32S, cv::Scalar(-1));
   if (options.barycentrics) maps.barycentrics = cv::Mat(height, width, CV_32FC2, cv::Scalar::all(nan));
+  // Face of every pixel, also when the caller did not ask for face ids (the adaptive pass needs them).
+  cv::Mat faces(height, width, CV_32S, cv::Scalar(-1));
 
   const Eigen::Matrix3f cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix().cast<float>();
   const Eigen::Matrix3f world_from_cam_rotation = cam_from_world_rotation.transpose();
-  const Eigen::Vector3f centre =
-      (cam_from_world.TargetOriginInSource() - impl_->origin).cast<float>();
-  const int block_rows = (height + kBlock - 1) / kBlock;
-  const int block_cols = (width + kBlock - 1) / kBlock;
+  const Eigen::Vector3d centre_local = cam_from_world.TargetOriginInSource() - impl_->origin;
+  const Eigen::Vector3f centre = centre_local.cast<float>();
 
-  ParallelFor(static_cast<std::size_t>(block_rows), options.num_threads, [&](std::size_t block_row) {
+  const auto write = [&](int col, int row, const PixelHit& hit) {
+    faces.at<int>(row, col) = hit.face;
+    if (hit.face < 0) return;
+    const Eigen::Vector3f& direction_in_cam = rays.Direction(col, row);
+    maps.depth.at<float>(row, col) = hit.distance * direction_in_cam.z();
+    if (options.normal) {
+      Eigen::Vector3f normal_in_cam = (cam_from_world_rotation * hit.normal_in_world).normalized();
+      if (normal_in_cam.dot(direction_in_cam) > 0.0f) normal_in_cam = -normal_in_cam;
+      maps.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
+    }
+    if (options.face_id) maps.face_id.at<int>(row, col) = hit.face;
+    if (options.barycentrics) maps.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(hit.b1, hit.b2);
+  };
+
+  // Casts up to 16 pixels as one packet and writes what they hit.
+  const auto cast = [&](const std::array<std::pair<int, int>, 16>& pixels, int count) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     alignas(64) RTCRayHit16 packet;
     alignas(64) int valid[16];
-    for (int block_col = 0; block_col < block_cols; ++block_col) {
-      for (int lane = 0; lane < 16; ++lane) {
-        const int col = block_col * kBlock + lane % kBlock;
-        const int row = static_cast<int>(block_row) * kBlock + lane / kBlock;
-        const bool inside = col < width && row < height;
-        const Eigen::Vector3f direction_in_cam =
-            inside ? rays.Direction(col, row) : Eigen::Vector3f::Constant(nan);
-        valid[lane] = inside && direction_in_cam.allFinite() ? -1 : 0;
-        const Eigen::Vector3f direction =
-            valid[lane] ? Eigen::Vector3f(world_from_cam_rotation * direction_in_cam) : Eigen::Vector3f(0, 0, 1);
-        SetPacketRay(lane, centre, direction, &packet);
+    for (int lane = 0; lane < 16; ++lane) {
+      const bool used = lane < count;
+      const Eigen::Vector3f direction_in_cam =
+          used ? rays.Direction(pixels[lane].first, pixels[lane].second) : Eigen::Vector3f::Constant(nan);
+      valid[lane] = used && direction_in_cam.allFinite() ? -1 : 0;
+      const Eigen::Vector3f direction =
+          valid[lane] ? Eigen::Vector3f(world_from_cam_rotation * direction_in_cam) : Eigen::Vector3f(0, 0, 1);
+      SetPacketRay(lane, centre, direction, &packet);
+    }
+    rtcIntersect16(valid, impl_->scene, &context, &packet);
+    for (int lane = 0; lane < count; ++lane) {
+      PixelHit hit;
+      if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID) {
+        hit.distance = packet.ray.tfar[lane];
+        hit.face = static_cast<int>(packet.hit.primID[lane]);
+        hit.b1 = packet.hit.u[lane];
+        hit.b2 = packet.hit.v[lane];
+        hit.normal_in_world = Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]);
       }
-      rtcIntersect16(valid, impl_->scene, &context, &packet);
+      write(pixels[lane].first, pixels[lane].second, hit);
+    }
+  };
+
+  // The exact intersection of a pixel's ray with the plane of `face` (known to contain the hit).
+  const auto intersect_plane = [&](int col, int row, int face) {
+    const Mesh::Face& corners = impl_->faces[static_cast<std::size_t>(face)];
+    const Eigen::Vector3d& p0 = impl_->local_vertices[corners[0]];
+    const Eigen::Vector3d e1 = impl_->local_vertices[corners[1]] - p0;
+    const Eigen::Vector3d e2 = impl_->local_vertices[corners[2]] - p0;
+    const Eigen::Vector3d normal = e1.cross(e2);
+    const Eigen::Vector3d direction = (world_from_cam_rotation * rays.Direction(col, row)).cast<double>();
+    PixelHit hit;
+    const double along = normal.dot(direction);
+    if (along == 0.0) return hit;
+    const double t = normal.dot(p0 - centre_local) / along;
+    const Eigen::Vector3d offset = centre_local + t * direction - p0;
+    // Barycentrics from the 2x2 system of dot products.
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), q1 = offset.dot(e1), q2 = offset.dot(e2);
+    const double determinant = d11 * d22 - d12 * d12;
+    hit.distance = static_cast<float>(t);
+    hit.face = face;
+    hit.b1 = static_cast<float>((d22 * q1 - d12 * q2) / determinant);
+    hit.b2 = static_cast<float>((d11 * q2 - d12 * q1) / determinant);
+    hit.normal_in_world = normal.cast<float>();
+    return hit;
+  };
+
+  const int step = options.adaptive ? 2 : 1;
+  // Sample columns and rows: every `step`-th, and always the last one.
+  std::vector<int> sample_cols, sample_rows;
+  for (int c = 0; c < width; c += step) sample_cols.push_back(c);
+  if (sample_cols.back() != width - 1) sample_cols.push_back(width - 1);
+  for (int r = 0; r < height; r += step) sample_rows.push_back(r);
+  if (sample_rows.back() != height - 1) sample_rows.push_back(height - 1);
+
+  // Pass 1: the samples, in packets of 4 x 4 samples.
+  const int block_rows = static_cast<int>((sample_rows.size() + kBlock - 1) / kBlock);
+  const int block_cols = static_cast<int>((sample_cols.size() + kBlock - 1) / kBlock);
+  ParallelFor(static_cast<std::size_t>(block_rows), options.num_threads, [&](std::size_t block_row) {
+    std::array<std::pair<int, int>, 16> pixels;
+    for (int block_col = 0; block_col < block_cols; ++block_col) {
+      int count = 0;
       for (int lane = 0; lane < 16; ++lane) {
-        if (!valid[lane] || packet.hit.geomID[lane] == RTC_INVALID_GEOMETRY_ID) continue;
-        const int col = block_col * kBlock + lane % kBlock;
-        const int row = static_cast<int>(block_row) * kBlock + lane / kBlock;
-        const Eigen::Vector3f& direction_in_cam = rays.Direction(col, row);
-        maps.depth.at<float>(row, col) = packet.ray.tfar[lane] * direction_in_cam.z();
-        if (options.normal) {
-          Eigen::Vector3f normal_in_cam =
-              cam_from_world_rotation *
-              Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]);
-          normal_in_cam.normalize();
-          if (normal_in_cam.dot(direction_in_cam) > 0.0f) normal_in_cam = -normal_in_cam;
-          maps.normal.at<cv::Vec3f>(row, col) =
-              cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
-        }
-        if (options.face_id) maps.face_id.at<int>(row, col) = static_cast<int>(packet.hit.primID[lane]);
-        if (options.barycentrics) {
-          maps.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(packet.hit.u[lane], packet.hit.v[lane]);
-        }
+        const std::size_t sc = static_cast<std::size_t>(block_col * kBlock + lane % kBlock);
+        const std::size_t sr = block_row * kBlock + static_cast<std::size_t>(lane / kBlock);
+        if (sc < sample_cols.size() && sr < sample_rows.size()) pixels[count++] = {sample_cols[sc], sample_rows[sr]};
+      }
+      cast(pixels, count);
+    }
+  });
+  if (step == 1) return maps;
+
+  // Pass 2: every other pixel. Its enclosing samples (the pixel itself where it is one) were written in
+  // pass 1 and are only read here, and each row writes only itself, so rows run in parallel.
+  const auto enclosing = [](const std::vector<int>& samples, int size) {
+    std::vector<std::pair<int, int>> result(static_cast<std::size_t>(size));
+    std::size_t s = 0;
+    for (int i = 0; i < size; ++i) {
+      while (s + 1 < samples.size() && samples[s + 1] <= i) ++s;
+      result[static_cast<std::size_t>(i)] = samples[s] == i ? std::make_pair(i, i) : std::make_pair(samples[s], samples[s + 1]);
+    }
+    return result;
+  };
+  const std::vector<std::pair<int, int>> cols_around = enclosing(sample_cols, width);
+  const std::vector<std::pair<int, int>> rows_around = enclosing(sample_rows, height);
+  ParallelFor(static_cast<std::size_t>(height), options.num_threads, [&](std::size_t row_index) {
+    const int row = static_cast<int>(row_index);
+    const auto [row0, row1] = rows_around[row_index];
+    std::array<std::pair<int, int>, 16> pending;
+    int count = 0;
+    for (int col = 0; col < width; ++col) {
+      const auto [col0, col1] = cols_around[static_cast<std::size_t>(col)];
+      if (row0 == row && row1 == row && col0 == col && col1 == col) continue;  // a sample
+      const int face = faces.at<int>(row0, col0);
+      if (face >= 0 && faces.at<int>(row0, col1) == face && faces.at<int>(row1, col0) == face &&
+          faces.at<int>(row1, col1) == face) {
+        write(col, row, intersect_plane(col, row, face));
+        continue;
+      }
+      pending[count++] = {col, row};
+      if (count == 16) {
+        cast(pending, count);
+        count = 0;
       }
     }
+    if (count > 0) cast(pending, count);
   });
   return maps;
 }
