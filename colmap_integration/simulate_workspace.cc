@@ -10,7 +10,6 @@
 #include "lib/lut/lut_file.h"
 #include "lib/lut/lut_slab_images.h"
 #include "lib/model/synthetic_seafloor.h"
-#include "lib/raycast/raycast_scene.h"
 #include "lib/util/logging.h"
 #include "lib/util/progress.h"
 
@@ -57,14 +56,13 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
   depth_only.normal = false;
   depth_only.face_id = false;
   depth_only.num_threads = options.num_threads;
-  const RaycastScene depth_scene(mesh);
   for (std::size_t i = 0; i < scene.poses.size(); ++i) {
     const NamedPose& pose = scene.poses[i];
     const cv::Mat radiance = simulator.Render(rays, backscatter, pose.cam_from_world);
     WriteLinearImage(ApplySensor(radiance, scene.sensor, i), root / "images" / pose.name, scene.output_encoding);
     WriteLinearImage(simulator.RenderAlbedo(rays, pose.cam_from_world), root / "ground_truth" / "albedo" / pose.name,
                      ImageEncoding::kLinear16);
-    WriteColmapArray(ReplaceNanWithZero(depth_scene.Render(rays, pose.cam_from_world, depth_only).depth),
+    WriteColmapArray(ReplaceNanWithZero(simulator.RenderGeometry(rays, pose.cam_from_world, depth_only).depth),
                      root / "ground_truth" / "depth" / (pose.name + ".bin"));
     Image image;
     image.image_id = static_cast<std::uint32_t>(i + 1);

@@ -58,7 +58,7 @@ Eigen::Vector3d Simulator::Backscatter(const Eigen::Vector3d& direction_in_cam, 
   return sum.matrix();
 }
 
-GeometryMaps Simulator::RenderMaps(const CameraRays& rays, const Rigid3d& cam_from_world,
+GeometryMaps Simulator::RenderGeometry(const CameraRays& rays, const Rigid3d& cam_from_world,
                                   const GeometryMapsOptions& options) const {
   if (scene_) return scene_->Render(rays, cam_from_world, options);
   // Pure water: nothing is hit anywhere.
@@ -102,7 +102,7 @@ cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backsc
   GeometryMapsOptions map_options;
   map_options.barycentrics = true;
   map_options.num_threads = options_.num_threads;
-  const GeometryMaps maps = RenderMaps(rays, cam_from_world, map_options);
+  const GeometryMaps maps = RenderGeometry(rays, cam_from_world, map_options);
   const Rigid3d world_from_cam = cam_from_world.Inverse();
   const Eigen::Matrix3d cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix();
   cv::Mat radiance(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(0));
@@ -159,7 +159,7 @@ cv::Mat Simulator::RenderAlbedo(const CameraRays& rays, const Rigid3d& cam_from_
   map_options.normal = false;
   map_options.barycentrics = true;
   map_options.num_threads = options_.num_threads;
-  const GeometryMaps maps = RenderMaps(rays, cam_from_world, map_options);
+  const GeometryMaps maps = RenderGeometry(rays, cam_from_world, map_options);
   cv::Mat albedo(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(std::nan("")));
   ParallelFor(static_cast<std::size_t>(rays.height()), options_.num_threads, [&](std::size_t row_index) {
     const int row = static_cast<int>(row_index);

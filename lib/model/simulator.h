@@ -69,6 +69,11 @@ class Simulator {
   Simulator(const Mesh& mesh, const LightRig& rig, const Water& water, const SurfaceAlbedo& albedo,
             const SimulatorOptions& options = {});
 
+  // The ray caster's maps of the simulated mesh (ground-truth depth and normals), or "nothing hit"
+  // everywhere for a mesh without faces.
+  GeometryMaps RenderGeometry(const CameraRays& rays, const Rigid3d& cam_from_world,
+                              const GeometryMapsOptions& options) const;
+
   // The backscatter of every pixel of `rays.camera()` at every range, computed once per camera.
   BackscatterTable MakeBackscatterTable(const CameraRays& rays) const;
 
@@ -91,8 +96,6 @@ class Simulator {
   FrustumLut TrueLut(const Camera& camera, const FrustumLutGrid& grid) const;
 
  private:
-  // The ray caster's maps, or "nothing hit" for a mesh without faces.
-  GeometryMaps RenderMaps(const CameraRays& rays, const Rigid3d& cam_from_world, const GeometryMapsOptions& options) const;
   // Irradiance-like term of light l at a point: I f / d^2 exp(-c d) (no cosine).
   Eigen::Vector3d LightTerm(const Light& light, const Eigen::Vector3d& point_in_cam, Eigen::Vector3d* to_light) const;
 
