@@ -77,12 +77,16 @@ SmoothnessWeights ComputeSmoothnessWeights(const FrustumLut& reference, double s
   return weights;
 }
 
-Eigen::Vector3d KnownColorWeight(const FrustumLut& reference, const KnownColorObservation& observation) {
-  const FrustumLutGrid& grid = reference.grid();
+KnownColorWeighting::KnownColorWeighting(const FrustumLut& reference) : reference_(reference) {
+  for (int k = 0; k < reference.grid().nz; ++k) slab_means_.push_back(SlabMean(reference, k));
+}
+
+Eigen::Vector3d KnownColorWeighting::operator()(const KnownColorObservation& observation) const {
+  const FrustumLutGrid& grid = reference_.grid();
   const double z = observation.point_in_cam.z();
   const int slab = std::clamp(static_cast<int>(std::lround(grid.SlabCoordinate(z))), 0, grid.nz - 1);
-  const Eigen::Vector3d mean = SlabMean(reference, slab);
-  const double mean_0_green = std::max(SlabMean(reference, 0).y(), 1e-12);
+  const Eigen::Vector3d& mean = slab_means_[static_cast<std::size_t>(slab)];
+  const double mean_0_green = std::max(slab_means_[0].y(), 1e-12);
   constexpr double kReferenceSnr = 10.0;  // 20 dB on the first slab's green channel
   // Distance to the nearest node, in node spacings.
   const double gx = observation.pixel.x() / grid.image_width * grid.nx;

@@ -34,6 +34,16 @@ struct SmoothnessWeights {
 
 SmoothnessWeights ComputeSmoothnessWeights(const FrustumLut& reference, double scale = 0.01, double alpha_factor = 0.7);
 
-Eigen::Vector3d KnownColorWeight(const FrustumLut& reference, const KnownColorObservation& observation);
+// The known-colour weight above. The slab means of the reference are computed once, at construction, not
+// per observation. Keeps a reference to `reference`, which must outlive it.
+class KnownColorWeighting {
+ public:
+  explicit KnownColorWeighting(const FrustumLut& reference);
+  Eigen::Vector3d operator()(const KnownColorObservation& observation) const;
+
+ private:
+  const FrustumLut& reference_;
+  std::vector<Eigen::Vector3d> slab_means_;  // mean_N per slab
+};
 
 }  // namespace lutex

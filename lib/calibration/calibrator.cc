@@ -173,10 +173,11 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
   if (observations.known_colors.empty()) throw std::invalid_argument("calibration needs known-colour observations");
   const auto start = std::chrono::steady_clock::now();
   const FrustumLut scaled_reference = ScaledReference(reference, observations);
+  const KnownColorWeighting weighting(scaled_reference);
   std::vector<Eigen::Vector3d> known_color_weights;
   known_color_weights.reserve(observations.known_colors.size());
   for (const KnownColorObservation& observation : observations.known_colors) {
-    known_color_weights.push_back(KnownColorWeight(scaled_reference, observation).cwiseProduct(observation.weight));
+    known_color_weights.push_back(weighting(observation).cwiseProduct(observation.weight));
   }
 
   CalibrationResult result;
