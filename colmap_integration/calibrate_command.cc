@@ -34,18 +34,16 @@ int RunCalibrateCommand(int argc, char** argv) {
   parser.AddInt("lut-ny", &options.ny, "LUT cells down the image.");
   parser.AddInt("lut-nz", &options.nz, "LUT slabs in depth.");
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
-  std::string z_near = "0.5", z_far = "5.0", smoothness = "0.01", shading_light = "0,0,0";
+  std::string shading_light = "0,0,0";
   parser.AddString("shading-light", &shading_light,
                    "x,y,z in the camera frame (metres) where shading puts the light: the camera centre (the paper),\n"
                    "      or a single flash's position. Recorded in the LUT; lutex restore follows it.");
-  parser.AddString("smoothness", &smoothness, "Smoothness weight relative to observations (paper: 0.01).");
-  parser.AddString("z-near", &z_near, "Nearest slab's planar depth (scene units).");
-  parser.AddString("z-far", &z_far, "Farthest slab's planar depth.");
+  parser.AddDouble("smoothness", &options.calibration.smoothness_scale,
+                   "Smoothness weight relative to observations (paper: 0.01).");
+  parser.AddDouble("z-near", &options.z_near, "Nearest slab's planar depth (scene units).");
+  parser.AddDouble("z-far", &options.z_far, "Farthest slab's planar depth.");
   if (!parser.Parse(argc, argv, 2)) return 0;
   options.input_encoding = ParseImageEncoding(input_encoding);
-  options.z_near = std::stod(z_near);
-  options.z_far = std::stod(z_far);
-  options.calibration.smoothness_scale = std::stod(smoothness);
   {
     std::replace(shading_light.begin(), shading_light.end(), ',', ' ');
     std::istringstream fields(shading_light);

@@ -15,17 +15,39 @@ void OptionParser::AddPath(const std::string& name, std::filesystem::path* value
                       [value](const std::string& text) { *value = text; }});
 }
 
+namespace {
+
+// Parses all of `text` with `convert` (std::stoi, std::stod), or throws naming the option and the value.
+template <typename T, typename Convert>
+T ParseNumber(const std::string& name, const std::string& text, const char* kind, Convert convert) {
+  std::size_t used = 0;
+  T result{};
+  try {
+    result = convert(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty()) {
+    throw std::invalid_argument("--" + name + " expects " + kind + ", not '" + text + "'");
+  }
+  return result;
+}
+
+}  // namespace
+
 void OptionParser::AddInt(const std::string& name, int* value, const std::string& help) {
   options_.push_back({name, help, std::to_string(*value), false, false, false, [value, name](const std::string& text) {
-                        std::size_t used = 0;
-                        try {
-                          *value = std::stoi(text, &used);
-                        } catch (const std::exception&) {
-                          used = 0;
-                        }
-                        if (used != text.size() || text.empty()) {
-                          throw std::invalid_argument("--" + name + " expects a whole number, not '" + text + "'");
-                        }
+                        *value = ParseNumber<int>(name, text, "a whole number",
+                                                  [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
+                      }});
+}
+
+void OptionParser::AddDouble(const std::string& name, double* value, const std::string& help) {
+  std::ostringstream shown;
+  shown << *value;
+  options_.push_back({name, help, shown.str(), false, false, false, [value, name](const std::string& text) {
+                        *value = ParseNumber<double>(name, text, "a number",
+                                                     [](const std::string& t, std::size_t* used) { return std::stod(t, used); });
                       }});
 }
 

@@ -19,6 +19,7 @@ class OptionParser {
 
   void AddPath(const std::string& name, std::filesystem::path* value, const std::string& help, bool required = false);
   void AddInt(const std::string& name, int* value, const std::string& help);
+  void AddDouble(const std::string& name, double* value, const std::string& help);
   void AddString(const std::string& name, std::string* value, const std::string& help);
   // A flag sets *value = true; `--no-NAME` sets it to false.
   void AddFlag(const std::string& name, bool* value, const std::string& help);

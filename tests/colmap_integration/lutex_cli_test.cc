@@ -81,6 +81,14 @@ TEST(LutexCli, OutputsDoNotDependOnTheThreadCount) {
   }
 }
 
+// A malformed number names its option and value (not the C++ conversion function).
+TEST(LutexCli, MalformedNumberNamesTheOption) {
+  const testing::CommandResult result = testing::RunCommand(
+      std::string(LUTEX_BINARY) + " calibrate --workspace W --mesh M.ply --targets T.json --z-near 0,5");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("--z-near expects a number, not '0,5'"), std::string::npos) << result.output;
+}
+
 TEST(LutexCli, HelpTeachesTheOptions) {
   const testing::CommandResult result = testing::RunCommand(std::string(LUTEX_BINARY) + " raycast --help");
   EXPECT_EQ(result.exit_code, 0);
