@@ -104,10 +104,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   std::mutex per_image_mutex;
   ForEachImageWithRays(model, options.num_threads, "calibration images", [&](const Image& image, const CameraRays& rays) {
     const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
-    GeometryMapsOptions map_options;
-    map_options.face_id = false;
-    map_options.num_threads = 1;
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
     const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
     std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
     if (observations.empty()) LogWarning() << image.name << ": no target pixels found; the image is skipped";

@@ -9,6 +9,13 @@
 
 namespace lutex {
 
+GeometryMapsOptions PerImageMapsOptions() {
+  GeometryMapsOptions options;
+  options.face_id = false;
+  options.num_threads = 1;
+  return options;
+}
+
 void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::string& progress_label,
                           const std::function<void(const Image&, const CameraRays&)>& visit) {
   using CameraKey = std::tuple<int, std::uint64_t, std::uint64_t, std::vector<double>>;

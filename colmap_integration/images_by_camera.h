@@ -10,8 +10,13 @@
 
 #include "colmap_integration/sparse_model.h"
 #include "lib/raycast/camera_rays.h"
+#include "lib/raycast/geometry_maps.h"
 
 namespace lutex {
+
+// Options for the maps of one visited image: depth and normals, on one thread (images already run in
+// parallel).
+GeometryMapsOptions PerImageMapsOptions();
 
 // Calls visit(image, rays) for every image; throws the first exception any call throws.
 void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::string& progress_label,

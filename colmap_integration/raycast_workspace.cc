@@ -42,10 +42,7 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
   std::vector<double> hit_fractions;
   std::mutex hit_fractions_mutex;
   ForEachImageWithRays(model, options.num_threads, "raycast", [&](const Image& image, const CameraRays& rays) {
-    GeometryMapsOptions map_options;
-    map_options.face_id = false;
-    map_options.num_threads = 1;  // parallel over images instead
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
     const double hit_fraction =
         static_cast<double>(cv::countNonZero(maps.depth == maps.depth)) / static_cast<double>(maps.depth.total());
     WriteColmapArray(ReplaceNanWithZero(maps.depth), summary.output / "depth_maps" / (image.name + ".geometric.bin"));

@@ -82,10 +82,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
                                std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
                                "x" + std::to_string(rays.height()));
     }
-    GeometryMapsOptions map_options;
-    map_options.face_id = false;
-    map_options.num_threads = 1;  // parallel over images instead
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, map_options);
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
     const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration);
     WriteLinearImage(restored.albedo, RestoredPath(summary.output, image.name, output_encoding), output_encoding);
     fs::path confidence_path = summary.confidence_output / image.name;
