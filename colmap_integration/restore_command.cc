@@ -17,23 +17,31 @@ int RunRestoreCommand(int argc, char** argv) {
       "per pixel, the mesh gives the surface point and its shading cos_theta, the LUT gives alpha and beta,\n"
       "and albedo = (I - beta) / (alpha cos_theta). Writes DIR/NAME (default DIR: W/lutex/restored) and an\n"
       "8-bit confidence map DIR_confidence/NAME.png per image (255 = fully trusted; low where the signal is\n"
-      "weak, the pixel saturated, or the surface seen at a grazing angle). Pixels without a surface are 0.\n"
+      "weak, the pixel saturated, the surface seen at a grazing angle, or the LUT there not constrained by\n"
+      "calibration data). Pixels without a surface are 0.\n"
       "Input encoding: srgb8 (8-bit sRGB, cameras' JPEGs; the default), linear16 (16-bit linear PNG/TIFF) or\n"
       "float (EXR). Output encoding: same (as the input; the default), srgb8, linear16 or float.");
   parser.AddPath("workspace", &options.workspace, "COLMAP workspace (images/, sparse/0 or sparse/).", true);
   parser.AddPath("mesh", &options.mesh, "Mesh in the model's world frame.", true);
   parser.AddPath("lut", &options.lut, "Calibrated LUT file.", true);
+  parser.AddPath("coverage", &options.coverage,
+                 "Per-node coverage of the LUT (default: coverage.lut beside the LUT, when present).");
+  bool no_coverage = false;
+  parser.AddFlag("no-coverage", &no_coverage, "Ignore the LUT's coverage in the confidence maps.");
   parser.AddPath("output", &options.output, "Output folder (default W/lutex/restored).");
   parser.AddString("input-encoding", &input_encoding, "srgb8, linear16 or float.");
   parser.AddString("output-encoding", &options.output_encoding, "same, srgb8, linear16 or float.");
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
   if (!parser.Parse(argc, argv, 2)) return 0;
   options.input_encoding = ParseImageEncoding(input_encoding);
+  options.use_coverage = !no_coverage;
   const RestoreSummary summary = RestoreWorkspace(options);
   std::cout << "restore: " << summary.num_images << " images in " << std::fixed << std::setprecision(1)
             << summary.seconds << " s; mean confidence " << std::setprecision(2) << summary.mean_confidence << "\n"
             << "  restored images:  " << summary.output.string() << "\n"
-            << "  confidence maps:  " << summary.confidence_output.string() << "\n";
+            << "  confidence maps:  " << summary.confidence_output.string() << "\n"
+            << "  LUT coverage:     " << (summary.coverage.empty() ? std::string("not used") : summary.coverage.string())
+            << "\n";
   return 0;
 }
 

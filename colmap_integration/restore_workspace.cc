@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
@@ -32,6 +33,22 @@ fs::path RestoredPath(const fs::path& output, const std::string& name, ImageEnco
   return path;
 }
 
+// The coverage LUT to use, or empty; an explicit one must exist and match the LUT's grid.
+fs::path CoveragePath(const RestoreOptions& options) {
+  if (!options.use_coverage) return {};
+  if (!options.coverage.empty()) return options.coverage;
+  const fs::path beside = options.lut.parent_path() / "coverage.lut";
+  return fs::exists(beside) ? beside : fs::path();
+}
+
+void CheckSameGrid(const FrustumLut& lut, const fs::path& lut_path, const FrustumLut& coverage,
+                   const fs::path& coverage_path) {
+  if (!(lut.grid() == coverage.grid())) {
+    throw std::runtime_error(coverage_path.string() + ": the coverage is for another LUT grid than " +
+                             lut_path.string());
+  }
+}
+
 }  // namespace
 
 void RestoreOptions::Check() const {
@@ -48,6 +65,12 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
   const Workspace workspace = FindWorkspace(options.workspace);
   const SparseModel model = ReadSparseModel(workspace.sparse_dir);
   const FrustumLut lut = ReadLut(options.lut);
+  const fs::path coverage_path = CoveragePath(options);
+  std::optional<FrustumLut> coverage;
+  if (!coverage_path.empty()) {
+    coverage = ReadLut(coverage_path);
+    CheckSameGrid(lut, options.lut, *coverage, coverage_path);
+  }
   for (const auto& [id, camera] : model.cameras) {
     if (static_cast<int>(camera.width) != lut.grid().image_width ||
         static_cast<int>(camera.height) != lut.grid().image_height) {
@@ -68,6 +91,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
       options.output_encoding == "same" ? options.input_encoding : ParseImageEncoding(options.output_encoding);
 
   RestoreSummary summary;
+  summary.coverage = coverage_path;
   summary.output = options.output.empty() ? workspace.OutputDir() / "restored" : options.output;
   summary.confidence_output = summary.output;
   summary.confidence_output += "_confidence";
@@ -83,7 +107,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
                                "x" + std::to_string(rays.height()));
     }
     const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
-    const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration);
+    const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr);
     WriteLinearImage(restored.albedo, RestoredPath(summary.output, image.name, output_encoding), output_encoding);
     fs::path confidence_path = summary.confidence_output / image.name;
     confidence_path.replace_extension(".png");

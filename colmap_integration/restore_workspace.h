@@ -25,6 +25,11 @@ struct RestoreOptions {
   std::filesystem::path workspace;
   std::filesystem::path mesh;
   std::filesystem::path lut;
+  // Per-node data coverage of the LUT (lutex calibrate writes it as coverage.lut beside the LUT); it
+  // lowers the confidence where no calibration data constrained the LUT. Empty: coverage.lut beside the
+  // LUT when it exists, else every node is trusted. `use_coverage` false ignores coverage altogether.
+  std::filesystem::path coverage;
+  bool use_coverage = true;
   // Empty: W/lutex/restored.
   std::filesystem::path output;
   // How the input images are encoded (the default, 8-bit sRGB, is what cameras' JPEGs are).
@@ -39,6 +44,7 @@ struct RestoreOptions {
 
 struct RestoreSummary {
   std::filesystem::path output;
+  std::filesystem::path coverage;  // the coverage LUT used; empty when none
   std::filesystem::path confidence_output;
   std::size_t num_images = 0;
   double mean_confidence = 0.0;  // over pixels with a surface, all channels

@@ -80,6 +80,42 @@ TEST(Restore, TrueLutRestoresTheSimulatedWorkspace) {
   EXPECT_LT(errors[errors.size() / 2], 0.01);
 }
 
+// coverage.lut beside the LUT is picked up: where it says no data constrained the nodes (the left half of
+// the frustum here), the confidence is 0; where it says full coverage, the confidence is unchanged.
+TEST(Restore, CoverageBesideTheLutLowersConfidenceWhereNoDataWas) {
+  testing::TempDir dir;
+  const fs::path workspace = Simulated(dir.path());
+  RestoreOptions options = OptionsFor(workspace);
+  options.output = dir.path() / "without";
+  RestoreWorkspace(options);
+
+  FrustumLut coverage(ReadLut(options.lut).grid());
+  const FrustumLutGrid& grid = coverage.grid();
+  for (int k = 0; k < grid.nz; ++k) {
+    for (int j = 0; j < grid.NodesY(); ++j) {
+      for (int i = 0; i < grid.NodesX(); ++i) {
+        coverage.node(i, j, k).alpha = Eigen::Vector3d::Constant(i <= grid.nx / 2 ? 0.0 : 1.0);
+      }
+    }
+  }
+  fs::create_directories(dir.path() / "calibration");
+  fs::copy_file(options.lut, dir.path() / "calibration" / "lut.lut");
+  WriteLut(coverage, dir.path() / "calibration" / "coverage.lut");
+  options.lut = dir.path() / "calibration" / "lut.lut";
+  options.output = dir.path() / "with";
+  const RestoreSummary summary = RestoreWorkspace(options);
+  EXPECT_EQ(summary.coverage, dir.path() / "calibration" / "coverage.lut");
+
+  const cv::Mat before = cv::imread((dir.path() / "without_confidence" / "frame_0000.png").string());
+  const cv::Mat after = cv::imread((summary.confidence_output / "frame_0000.png").string());
+  ASSERT_FALSE(before.empty());
+  ASSERT_FALSE(after.empty());
+  const cv::Rect left(0, 0, before.cols / 2 - 1, before.rows), right(before.cols / 2 + 10, 0, before.cols / 2 - 10, before.rows);
+  EXPECT_GT(cv::mean(before(left))[1], 100.0);
+  EXPECT_EQ(cv::countNonZero(after(left).reshape(1)), 0);
+  EXPECT_EQ(cv::norm(before(right), after(right), cv::NORM_INF), 0.0);
+}
+
 TEST(Restore, LutForAnotherImageSizeIsAnErrorNamingTheLut) {
   testing::TempDir dir;
   const fs::path workspace = Simulated(dir.path());
