@@ -54,7 +54,9 @@ int RunCalibrateCommand(int argc, char** argv) {
   const CalibrateSummary summary = CalibrateWorkspace(options);
   const CalibrationSummary& c = summary.calibration;
   std::cout << std::fixed << std::setprecision(4) << "calibrate: " << summary.num_images << " images, "
-            << c.num_known_color << " known-colour and " << c.num_pure_water << " pure-water observations; "
+            << c.num_known_color << " known-colour and " << c.num_pure_water << " pure-water observations ("
+            << summary.num_pure_water_images << " pure-water images, " << summary.num_pure_water_skipped
+            << " skipped as showing a surface); "
             << "residual RMS " << c.known_color_rms.x() << " " << c.known_color_rms.y() << " " << c.known_color_rms.z()
             << "; " << std::setprecision(0) << 100 * c.covered_fraction << " % of nodes covered; "
             << std::setprecision(1) << c.seconds << " s\n"

@@ -9,6 +9,7 @@
 #include "colmap_integration/images_by_camera.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/workspace.h"
+#include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/targets.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/lut/lut_file.h"
@@ -58,6 +59,42 @@ const Camera& SingleImageSize(const SparseModel& model, const fs::path& where) {
     }
   }
   return first;
+}
+
+// Pure-water bounds from the images of options.pure_water, screened for surfaces in view (skipped with a
+// warning naming the image and why).
+std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& options, const Camera& camera,
+                                                        CalibrateSummary* summary) {
+  const Workspace workspace = FindWorkspace(options.pure_water);
+  const SparseModel model = ReadSparseModel(workspace.sparse_dir);
+  std::vector<std::vector<PureWaterObservation>> per_image;
+  std::vector<PureWaterImageStats> stats;
+  std::vector<fs::path> paths;
+  for (const auto& [id, image] : model.images) {
+    const Camera& water_camera = model.cameras.at(image.camera_id);
+    paths.push_back(workspace.images_dir / image.name);
+    if (water_camera.width != camera.width || water_camera.height != camera.height) {
+      throw std::runtime_error(paths.back().string() + ": pure-water image of another size than the calibration images");
+    }
+    const cv::Mat observed = ReadLinearImage(paths.back(), options.input_encoding);
+    stats.push_back(MeasurePureWaterImage(observed));
+    per_image.push_back(SamplePureWater(observed, options.pure_water_stride));
+  }
+  const std::vector<std::string> reasons = ScreenPureWaterImages(stats, options.pure_water_screening);
+  std::vector<PureWaterObservation> observations;
+  for (std::size_t i = 0; i < per_image.size(); ++i) {
+    if (!reasons[i].empty()) {
+      LogWarning() << paths[i].string() << ": skipped as a pure-water image, it seems to show a surface: " << reasons[i];
+      ++summary->num_pure_water_skipped;
+      continue;
+    }
+    observations.insert(observations.end(), per_image[i].begin(), per_image[i].end());
+    ++summary->num_pure_water_images;
+  }
+  if (observations.empty()) {
+    throw std::runtime_error(options.pure_water.string() + ": none of its images looks like pure water");
+  }
+  return observations;
 }
 
 }  // namespace
@@ -122,26 +159,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   CalibrateSummary summary;
   summary.num_images = model.images.size();
   if (!options.pure_water.empty()) {
-    const Workspace water_workspace = FindWorkspace(options.pure_water);
-    const SparseModel water_model = ReadSparseModel(water_workspace.sparse_dir);
-    for (const auto& [id, image] : water_model.images) {
-      const Camera& water_camera = water_model.cameras.at(image.camera_id);
-      if (water_camera.width != camera.width || water_camera.height != camera.height) {
-        throw std::runtime_error((water_workspace.images_dir / image.name).string() +
-                                 ": pure-water image of another size than the calibration images");
-      }
-      const cv::Mat observed = ReadLinearImage(water_workspace.images_dir / image.name, options.input_encoding);
-      for (int row = options.pure_water_stride / 2; row < observed.rows; row += options.pure_water_stride) {
-        for (int col = options.pure_water_stride / 2; col < observed.cols; col += options.pure_water_stride) {
-          const cv::Vec3f value = observed.at<cv::Vec3f>(row, col);
-          PureWaterObservation observation;
-          observation.pixel = Eigen::Vector2d(col + 0.5, row + 0.5);
-          observation.intensity = Eigen::Vector3d(value[0], value[1], value[2]);
-          observations.pure_water.push_back(observation);
-        }
-      }
-      ++summary.num_pure_water_images;
-    }
+    observations.pure_water = PureWaterObservations(options, camera, &summary);
   }
   LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour and "
             << observations.pure_water.size() << " pure-water observations";
@@ -167,6 +185,8 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   json["pure_water_max_violation"] = {result.summary.pure_water_max_violation.x(),
                                       result.summary.pure_water_max_violation.y(),
                                       result.summary.pure_water_max_violation.z()};
+  json["pure_water_images"] = summary.num_pure_water_images;
+  json["pure_water_images_skipped"] = summary.num_pure_water_skipped;
   json["covered_fraction"] = result.summary.covered_fraction;
   json["seconds"] = result.summary.seconds;
   for (const CalibrationLevelSummary& level : result.summary.levels) {

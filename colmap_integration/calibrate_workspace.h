@@ -13,6 +13,7 @@
 
 #include "lib/calibration/calibrator.h"
 #include "lib/calibration/known_color_sampling.h"
+#include "lib/calibration/pure_water_sampling.h"
 #include "lib/image/image_io.h"
 
 namespace lutex {
@@ -36,6 +37,7 @@ struct CalibrateOptions {
   Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
   KnownColorSamplingOptions sampling;
   int pure_water_stride = 8;
+  PureWaterScreeningOptions pure_water_screening;
   CalibrationOptions calibration;  // levels and weights; grid and in_air are set from the fields above
   int num_threads = 0;
 
@@ -46,6 +48,7 @@ struct CalibrateSummary {
   std::filesystem::path lut;
   std::size_t num_images = 0;
   std::size_t num_pure_water_images = 0;
+  std::size_t num_pure_water_skipped = 0;  // images that seemed to show a surface
   CalibrationSummary calibration;
 };
 

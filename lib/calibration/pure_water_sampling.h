@@ -1,0 +1,53 @@
+#pragma once
+
+// Pure-water observations (paper Eq. "beta_N <= I_pw"): images of open water, no surface in view, whose
+// every pixel bounds the backscatter along its ray. An image that does show a surface (the seafloor at the
+// edge of the light, a fish, the frame of the vehicle) still gives valid but loose bounds, so it is not
+// wrong to use; it is screened out anyway because it says the user's "pure water" folder is not what it
+// claims, and one bright frame would otherwise carry no information at all.
+//
+// Screening, per image and against the set:
+//   structure: backscatter is smooth across the image; the fraction of pixels (on a 160-pixel-wide
+//              thumbnail) that depart from a Gaussian-smoothed copy by more than 0.003 + 5 % and by more
+//              than 5 times the image's own noise (1.4826 x the median departure) is the image's
+//              structure. Above `max_structure` (1 %) a surface edge is in view.
+//   brightness: a surface lit by the rig is far brighter than backscatter; an image whose mean in any
+//              channel exceeds `max_brightness_ratio` (4) times the set's median plus 0.002 shows one.
+// Measured: Blender pure water 0.07-0.09 % structure, frames with the colour boards in view 0.5-9 %
+// structure or 30 times the pure-water brightness; a uniform seafloor filling a simulated frame has no
+// structure but is 13 times brighter than open water.
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include <Eigen/Core>
+
+#include "lib/calibration/observations.h"
+
+namespace lutex {
+
+struct PureWaterScreeningOptions {
+  double max_structure = 0.01;
+  double max_brightness_ratio = 4.0;
+
+  void Check() const;
+};
+
+struct PureWaterImageStats {
+  double structure = 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();  // linear RGB
+};
+
+// `linear`: RGB CV_32FC3.
+PureWaterImageStats MeasurePureWaterImage(const cv::Mat& linear);
+
+// Per image of the set, the reason it seems to show a surface, or empty when it looks like pure water.
+std::vector<std::string> ScreenPureWaterImages(const std::vector<PureWaterImageStats>& images,
+                                               const PureWaterScreeningOptions& options);
+
+// Every `stride`-th pixel of the image (both directions), as an upper bound on beta along its ray.
+std::vector<PureWaterObservation> SamplePureWater(const cv::Mat& linear, int stride);
+
+}  // namespace lutex
