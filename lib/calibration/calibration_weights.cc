@@ -82,26 +82,39 @@ KnownColorWeighting::KnownColorWeighting(const FrustumLut& reference) : referenc
 }
 
 Eigen::Vector3d KnownColorWeighting::operator()(const KnownColorObservation& observation) const {
+  return ViewWeight(observation.pixel, observation.point_in_cam, observation.intensity);
+}
+
+Eigen::Vector3d KnownColorWeighting::operator()(const CorrespondenceObservation& observation) const {
+  const Eigen::Vector3d first = ViewWeight(observation.first.pixel, observation.first.point_in_cam, observation.first.intensity);
+  const Eigen::Vector3d second =
+      ViewWeight(observation.second.pixel, observation.second.point_in_cam, observation.second.intensity);
+  const Eigen::Vector3d norm = (first.cwiseAbs2() + second.cwiseAbs2()).cwiseSqrt();
+  return (first.cwiseProduct(second).array() / norm.array().max(1e-300)).matrix();
+}
+
+Eigen::Vector3d KnownColorWeighting::ViewWeight(const Eigen::Vector2d& pixel, const Eigen::Vector3d& point_in_cam,
+                                                const Eigen::Vector3d& intensity) const {
   const FrustumLutGrid& grid = reference_.grid();
-  const double z = observation.point_in_cam.z();
+  const double z = point_in_cam.z();
   const int slab = std::clamp(static_cast<int>(std::lround(grid.SlabCoordinate(z))), 0, grid.nz - 1);
   const Eigen::Vector3d& mean = slab_means_[static_cast<std::size_t>(slab)];
   const double mean_0_green = std::max(slab_means_[0].y(), 1e-12);
   constexpr double kReferenceSnr = 10.0;  // 20 dB on the first slab's green channel
   // Distance to the nearest node, in node spacings.
-  const double gx = observation.pixel.x() / grid.image_width * grid.nx;
-  const double gy = observation.pixel.y() / grid.image_height * grid.ny;
+  const double gx = pixel.x() / grid.image_width * grid.nx;
+  const double gy = pixel.y() / grid.image_height * grid.ny;
   const double gz = grid.SlabCoordinate(z);
   const double node_distance = std::sqrt(std::pow(gx - std::round(gx), 2) + std::pow(gy - std::round(gy), 2) +
                                          std::pow(gz - std::round(gz), 2));
   const double inverse_distance = 1.0 / std::max(node_distance, 0.25);
-  const double forward_scatter = std::exp(-observation.point_in_cam.norm());  // 1 / (e^(0.5 d))^2
+  const double forward_scatter = std::exp(-point_in_cam.norm());  // 1 / (e^(0.5 d))^2
   Eigen::Vector3d weight;
   for (int c = 0; c < 3; ++c) {
     const double mean_c = std::max(mean[c], 1e-12);
     const double shot = 0.01 * std::sqrt(mean_c);
     const double constant = mean_c / (kReferenceSnr * mean_0_green);
-    const double snr = std::max(observation.intensity[c], 0.0) / (shot + constant);
+    const double snr = std::max(intensity[c], 0.0) / (shot + constant);
     weight[c] = inverse_distance * snr * forward_scatter;
   }
   return weight;

@@ -17,6 +17,9 @@
 // mean_N = 0.7 mean(alpha_N) + mean(beta_N) of the observation's slab, snr_0 = 10 (20 dB). The paper's
 // d_v, the distance from the voxel centre, is unbounded at a node; lutex measures it in node spacings to
 // the nearest node and floors it at 0.25.
+//
+// Correspondence, per channel (paper): w_c = w_1 w_2 / sqrt(w_1^2 + w_2^2) from the known-colour weights
+// of its two views.
 
 #include <vector>
 
@@ -40,8 +43,12 @@ class KnownColorWeighting {
  public:
   explicit KnownColorWeighting(const FrustumLut& reference);
   Eigen::Vector3d operator()(const KnownColorObservation& observation) const;
+  Eigen::Vector3d operator()(const CorrespondenceObservation& observation) const;
 
  private:
+  Eigen::Vector3d ViewWeight(const Eigen::Vector2d& pixel, const Eigen::Vector3d& point_in_cam,
+                             const Eigen::Vector3d& intensity) const;
+
   const FrustumLut& reference_;
   std::vector<Eigen::Vector3d> slab_means_;  // mean_N per slab
 };

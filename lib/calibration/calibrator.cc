@@ -30,15 +30,27 @@ double Median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-// The reference LUT rescaled so its alpha matches the data's typical I / (cos_theta rho).
-FrustumLut ScaledReference(const FrustumLut& reference, const ObservationSet& observations) {
+// The reference LUT rescaled so its alpha matches the data's typical I / (cos_theta rho): from the known
+// colours, or without them from the correspondences' views with the grey-world albedo.
+FrustumLut ScaledReference(const FrustumLut& reference, const ObservationSet& observations,
+                           const CalibrationOptions& options) {
   std::vector<double> data_ratio, reference_ratio;
+  const auto add = [&](const Eigen::Vector2d& pixel, const Eigen::Vector3d& point_in_cam, double intensity,
+                       double shading_albedo) {
+    if (shading_albedo <= 0.05) return;
+    data_ratio.push_back(intensity / shading_albedo);
+    reference_ratio.push_back(reference.Lookup(pixel.x(), pixel.y(), point_in_cam.z()).alpha.y());
+  };
   for (const KnownColorObservation& observation : observations.known_colors) {
-    const double shading = observation.cos_theta * observation.albedo.y();
-    if (shading <= 0.05) continue;
-    data_ratio.push_back(observation.intensity.y() / shading);
-    reference_ratio.push_back(
-        reference.Lookup(observation.pixel.x(), observation.pixel.y(), observation.point_in_cam.z()).alpha.y());
+    add(observation.pixel, observation.point_in_cam, observation.intensity.y(),
+        observation.cos_theta * observation.albedo.y());
+  }
+  if (observations.known_colors.empty()) {
+    for (const CorrespondenceObservation& observation : observations.correspondences) {
+      for (const SurfaceView* view : {&observation.first, &observation.second}) {
+        add(view->pixel, view->point_in_cam, view->intensity.y(), view->cos_theta * options.grey_world_albedo.y());
+      }
+    }
   }
   const double reference_median = Median(reference_ratio);
   const double scale = reference_median > 0 ? Median(data_ratio) / reference_median : 1.0;
@@ -50,9 +62,36 @@ FrustumLut ScaledReference(const FrustumLut& reference, const ObservationSet& ob
   return scaled;
 }
 
+// The albedo a view restores to with `lut`, per channel (NaN where alpha cos_theta is not positive).
+Eigen::Vector3d ViewAlbedo(const FrustumLut& lut, const SurfaceView& view) {
+  const LutNode node = lut.Lookup(view.pixel.x(), view.pixel.y(), view.point_in_cam.z());
+  Eigen::Vector3d albedo;
+  for (int c = 0; c < 3; ++c) {
+    const double signal = node.alpha[c] * view.cos_theta;
+    albedo[c] = signal > 0.0 ? (view.intensity[c] - node.beta[c]) / signal : std::nan("");
+  }
+  return albedo;
+}
+
+// The node the correspondences touch most (interpolation weight summed), which holds the gauge when no
+// known colour fixes alpha's scale; -1 when there are no correspondences.
+int GaugeNode(const FrustumLut& level_lut, const ObservationSet& observations) {
+  std::vector<double> touch(static_cast<std::size_t>(level_lut.grid().NumNodes()), 0.0);
+  for (const CorrespondenceObservation& observation : observations.correspondences) {
+    for (const SurfaceView* view : {&observation.first, &observation.second}) {
+      const NodeWeights weights = level_lut.Weights(view->pixel.x(), view->pixel.y(), view->point_in_cam.z());
+      for (int n = 0; n < weights.count; ++n) touch[static_cast<std::size_t>(weights.node[n])] += weights.weight[n];
+    }
+  }
+  if (observations.correspondences.empty()) return -1;
+  return static_cast<int>(std::max_element(touch.begin(), touch.end()) - touch.begin());
+}
+
 struct ChannelProblemInput {
   const ObservationSet& observations;
   const std::vector<Eigen::Vector3d>& known_color_weights;
+  const std::vector<Eigen::Vector3d>& correspondence_weights;
+  int gauge_node;  // node whose alpha is held (no known colours), or -1
   const FrustumLut& level_lut;  // grid of this level (values unused)
   const FrustumLut& level_reference;  // the weighting LUT on this level: the shape smoothness keeps
   const SmoothnessWeights& smoothness;
@@ -81,6 +120,44 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
                                                         observation.cos_theta * observation.albedo[channel],
                                                         observation.intensity[channel], weight),
                              nullptr, blocks);
+  }
+  for (std::size_t o = 0; o < input.observations.correspondences.size(); ++o) {
+    const CorrespondenceObservation& observation = input.observations.correspondences[o];
+    const double weight = input.correspondence_weights[o][channel];
+    if (!(weight > 0.0)) continue;
+    // Union of the two views' nodes, with each view's interpolation weights.
+    std::vector<int> nodes;
+    std::vector<std::array<double, 4>> coefficients;
+    const auto add_view = [&](const SurfaceView& view, int offset) {
+      const NodeWeights weights = input.level_lut.Weights(view.pixel.x(), view.pixel.y(), view.point_in_cam.z());
+      for (int n = 0; n < weights.count; ++n) {
+        const auto found = std::find(nodes.begin(), nodes.end(), weights.node[n]);
+        const std::size_t slot = static_cast<std::size_t>(found - nodes.begin());
+        if (found == nodes.end()) {
+          nodes.push_back(weights.node[n]);
+          coefficients.push_back({0.0, 0.0, 0.0, 0.0});
+        }
+        coefficients[slot][static_cast<std::size_t>(offset)] += weights.alpha_weight[n];
+        coefficients[slot][static_cast<std::size_t>(offset) + 1] += weights.weight[n];
+      }
+    };
+    add_view(observation.first, 0);
+    add_view(observation.second, 2);
+    // In intensity units: divided by the reference's alpha cos_theta, the residual is about the
+    // difference of the two views' observations once restored to the same albedo.
+    const auto reference_signal = [&](const SurfaceView& view) {
+      return input.level_reference.Lookup(view.pixel.x(), view.pixel.y(), view.point_in_cam.z()).alpha[channel] *
+             view.cos_theta;
+    };
+    const double scale = 0.5 * (reference_signal(observation.first) + reference_signal(observation.second));
+    if (!(scale > 0.0)) continue;
+    std::vector<double*> blocks;
+    for (int node : nodes) blocks.push_back(block(node));
+    problem.AddResidualBlock(
+        CorrespondenceResidual::Create(std::move(coefficients), observation.first.cos_theta,
+                                       observation.first.intensity[channel], observation.second.cos_theta,
+                                       observation.second.intensity[channel], weight / scale),
+        nullptr, blocks);
   }
   for (const PureWaterObservation& observation : input.observations.pure_water) {
     if (input.options.in_air) break;
@@ -134,9 +211,14 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
     problem.SetParameterLowerBound(block(n), 0, 0.0);
     if (input.options.in_air) {
       (*values)[static_cast<std::size_t>(n)][1] = 0.0;
-      problem.SetManifold(block(n), new ceres::SubsetManifold(2, {1}));
+      if (n == input.gauge_node) {
+        problem.SetParameterBlockConstant(block(n));
+      } else {
+        problem.SetManifold(block(n), new ceres::SubsetManifold(2, {1}));
+      }
     } else {
       problem.SetParameterLowerBound(block(n), 1, 0.0);
+      if (n == input.gauge_node) problem.SetManifold(block(n), new ceres::SubsetManifold(2, {0}));
     }
   }
   ceres::Solver::Options solver_options;
@@ -170,19 +252,32 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
                             const CalibrationOptions& options) {
   options.Check();
   if (!(reference.grid() == options.grid)) throw std::invalid_argument("the reference LUT must be on the calibration grid");
-  if (observations.known_colors.empty()) throw std::invalid_argument("calibration needs known-colour observations");
+  const bool self_calibrated = observations.known_colors.empty();
+  if (self_calibrated && observations.correspondences.empty()) {
+    throw std::invalid_argument("calibration needs known-colour observations or correspondences");
+  }
+  if (self_calibrated && !(options.grey_world_albedo.minCoeff() > 0.0)) {
+    throw std::invalid_argument(
+        "without known colours, correspondences fix alpha only up to a factor per channel: give a known colour "
+        "or a grey-world albedo");
+  }
   const auto start = std::chrono::steady_clock::now();
-  const FrustumLut scaled_reference = ScaledReference(reference, observations);
+  const FrustumLut scaled_reference = ScaledReference(reference, observations, options);
   const KnownColorWeighting weighting(scaled_reference);
-  std::vector<Eigen::Vector3d> known_color_weights;
+  std::vector<Eigen::Vector3d> known_color_weights, correspondence_weights;
   known_color_weights.reserve(observations.known_colors.size());
   for (const KnownColorObservation& observation : observations.known_colors) {
     known_color_weights.push_back(weighting(observation).cwiseProduct(observation.weight));
+  }
+  correspondence_weights.reserve(observations.correspondences.size());
+  for (const CorrespondenceObservation& observation : observations.correspondences) {
+    correspondence_weights.push_back(options.correspondence_weight * weighting(observation).cwiseProduct(observation.weight));
   }
 
   CalibrationResult result;
   result.summary.num_known_color = observations.known_colors.size();
   result.summary.num_pure_water = observations.pure_water.size();
+  result.summary.num_correspondences = observations.correspondences.size();
   FrustumLut current;
   for (std::size_t l = 0; l < options.levels.size(); ++l) {
     const FrustumLutGrid grid = LevelGrid(options.grid, options.levels[l]);
@@ -196,7 +291,9 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
     CalibrationLevelSummary level_summary;
     level_summary.nx = grid.nx;
     level_summary.ny = grid.ny;
-    const ChannelProblemInput input{observations, known_color_weights, level_lut, level_reference, smoothness, options};
+    const int gauge_node = self_calibrated ? GaugeNode(level_lut, observations) : -1;
+    const ChannelProblemInput input{observations, known_color_weights, correspondence_weights, gauge_node,
+                                    level_lut, level_reference, smoothness, options};
     ParallelFor(3, options.num_threads, [&](std::size_t channel) {
       const int c = static_cast<int>(channel);
       NodeValues values(static_cast<std::size_t>(grid.NumNodes()));
@@ -214,6 +311,27 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
     current = level_lut;
   }
   result.lut = current;
+  if (self_calibrated) {
+    // The absolute scale per channel: the correspondences' surfaces average to the grey-world albedo.
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero(), count = Eigen::Vector3d::Zero();
+    for (const CorrespondenceObservation& observation : observations.correspondences) {
+      for (const SurfaceView* view : {&observation.first, &observation.second}) {
+        const Eigen::Vector3d albedo = ViewAlbedo(result.lut, *view);
+        for (int c = 0; c < 3; ++c) {
+          if (!std::isfinite(albedo[c])) continue;
+          sum[c] += albedo[c];
+          count[c] += 1.0;
+        }
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      if (!(count[c] > 0.0) || !(sum[c] > 0.0)) {
+        throw std::runtime_error("correspondences restore to no positive albedo; cannot set the grey-world scale");
+      }
+      const double factor = sum[c] / count[c] / options.grey_world_albedo[c];
+      for (int n = 0; n < options.grid.NumNodes(); ++n) result.lut.node(n).alpha[c] *= factor;
+    }
+  }
 
   // Coverage and residual summary on the finest level.
   result.coverage = FrustumLut(options.grid);
@@ -230,7 +348,27 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
         value.alpha.cwiseProduct(observation.albedo) * observation.cos_theta + value.beta;
     squared += (predicted - observation.intensity).cwiseAbs2();
   }
-  result.summary.known_color_rms = (squared / static_cast<double>(observations.known_colors.size())).cwiseSqrt();
+  if (!observations.known_colors.empty()) {
+    result.summary.known_color_rms = (squared / static_cast<double>(observations.known_colors.size())).cwiseSqrt();
+  }
+  Eigen::Vector3d albedo_squared = Eigen::Vector3d::Zero(), albedo_count = Eigen::Vector3d::Zero();
+  for (std::size_t o = 0; o < observations.correspondences.size(); ++o) {
+    const CorrespondenceObservation& observation = observations.correspondences[o];
+    for (const SurfaceView* view : {&observation.first, &observation.second}) {
+      const NodeWeights weights = result.lut.Weights(view->pixel.x(), view->pixel.y(), view->point_in_cam.z());
+      for (int n = 0; n < weights.count; ++n) {
+        if (weights.weight[n] > 0.1 && correspondence_weights[o].minCoeff() > 0.0) ++touches[static_cast<std::size_t>(weights.node[n])];
+      }
+    }
+    const Eigen::Vector3d difference = ViewAlbedo(result.lut, observation.first) - ViewAlbedo(result.lut, observation.second);
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(difference[c])) continue;
+      albedo_squared[c] += difference[c] * difference[c];
+      albedo_count[c] += 1.0;
+    }
+  }
+  result.summary.correspondence_albedo_rms =
+      (albedo_squared.array() / albedo_count.array().max(1.0)).sqrt().matrix();
   int covered = 0;
   for (int n = 0; n < options.grid.NumNodes(); ++n) {
     const double coverage = std::min(1.0, touches[static_cast<std::size_t>(n)] / 4.0);

@@ -1,7 +1,8 @@
 #pragma once
 
-// Fitting a FrustumLut to observations (paper Sec. 2.2-2.4): known colours, smoothness between the six
-// neighbours of every node, pure-water upper bounds on beta, and positivity of alpha and beta. Solved by
+// Fitting a FrustumLut to observations (paper Sec. 2.2-2.4): known colours, correspondences between views
+// of the same surface, smoothness between the six neighbours of every node, pure-water upper bounds on
+// beta, and positivity of alpha and beta. Solved by
 // Ceres (Levenberg-Marquardt, sparse Cholesky) for the three channels independently and in parallel,
 // coarse to fine: each level's nx x ny cells are solved starting from the previous level resampled
 // (corner-aligned grids nest exactly, see frustum_lut.h). In air, beta is held at 0.
@@ -10,8 +11,19 @@
 // pre-rendered reference LUT (alpha_a / ref_a = alpha_b / ref_b), because a plain difference prefers a
 // flat LUT and pulled the dim image corners and far slabs towards the bright centre (on simulated boards:
 // held-out restoration error 2.9 % -> 1.9 % median, 12 % -> 5.8 % p90). The weights are the paper's.
+//
+// Correspondences alone are satisfied by alpha = 0 and fix alpha only up to a factor per channel. The
+// paper normalises sum(alpha) = 1; that one residual would touch every node and make the sparse normal
+// equations dense, so lutex fixes the same gauge by holding alpha of one node (the one the correspondences
+// touch most) at its initial value, then sets the absolute scale per channel after the solve: from the
+// known colours when there are any (they then fix the scale themselves and no node is held), else from
+// `grey_world_albedo`, the mean albedo the user asserts for the surveyed surfaces (a grey-world
+// assumption, only on explicit request). The correspondence residual is divided by the reference's
+// alpha cos_theta at the two views, so it is in intensity units like the known-colour residual.
 
 #include <utility>
+
+#include <Eigen/Core>
 #include <vector>
 
 #include "lib/calibration/observations.h"
@@ -32,6 +44,11 @@ struct CalibrationOptions {
   double alpha_smoothness_factor = 0.7;
   // Weight of a pure-water bound violation, per unit of excess beta.
   double pure_water_weight = 100.0;
+  // Factor on the paper's correspondence weights.
+  double correspondence_weight = 1.0;
+  // Without known colours: the mean albedo, per channel, of the correspondences' surfaces that sets the
+  // absolute scale (grey world). Required (> 0) when there are no known colours; ignored otherwise.
+  Eigen::Vector3d grey_world_albedo = Eigen::Vector3d::Zero();
   // Levenberg-Marquardt iterations per level and channel.
   int max_iterations = 100;
   // Threads over channels; <= 0 means all cores. Results do not depend on it.
@@ -53,9 +70,12 @@ struct CalibrationSummary {
   std::size_t num_pure_water = 0;
   // Root-mean-square of the unweighted known-colour residuals (predicted - observed), per channel.
   Eigen::Vector3d known_color_rms = Eigen::Vector3d::Zero();
+  std::size_t num_correspondences = 0;
+  // Root-mean-square difference of the albedo the two views of a correspondence restore to, per channel.
+  Eigen::Vector3d correspondence_albedo_rms = Eigen::Vector3d::Zero();
   // Largest pure-water bound violation (beta - I_pw) over all bounds, per channel; 0 when none.
   Eigen::Vector3d pure_water_max_violation = Eigen::Vector3d::Zero();
-  // Fraction of the finest LUT's nodes constrained by known-colour data (see coverage).
+  // Fraction of the finest LUT's nodes constrained by data (see coverage).
   double covered_fraction = 0.0;
   double seconds = 0.0;
 };
@@ -63,14 +83,15 @@ struct CalibrationSummary {
 struct CalibrationResult {
   FrustumLut lut;
   // Per node, in alpha (all three channels equal): how well data constrained it, in [0, 1] (1 when at
-  // least 4 known-colour observations with non-negligible weight touch the node). Restoration uses it
-  // for confidence.
+  // least 4 known-colour observations or correspondence views with non-negligible weight touch the
+  // node). Restoration uses it for confidence.
   FrustumLut coverage;
   CalibrationSummary summary;
 };
 
 // `reference` is the weighting LUT on options.grid (a point light at the camera in the expected water,
-// any intensity scale: it is rescaled to the data).
+// any intensity scale: it is rescaled to the data). Needs known colours or correspondences (then with
+// options.grey_world_albedo).
 CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut& reference,
                             const CalibrationOptions& options);
 

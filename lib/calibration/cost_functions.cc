@@ -33,4 +33,13 @@ ceres::CostFunction* PureWaterBoundResidual::Create(std::vector<double> beta_wei
   return MakeDynamic(new PureWaterBoundResidual{std::move(beta_weights), intensity, weight}, count);
 }
 
+ceres::CostFunction* CorrespondenceResidual::Create(std::vector<std::array<double, 4>> coefficients, double cos_theta_1,
+                                                    double intensity_1, double cos_theta_2, double intensity_2,
+                                                    double weight) {
+  const std::size_t count = coefficients.size();
+  return MakeDynamic(new CorrespondenceResidual{std::move(coefficients), cos_theta_1, intensity_1, cos_theta_2,
+                                                intensity_2, weight},
+                     count);
+}
+
 }  // namespace lutex

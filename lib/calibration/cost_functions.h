@@ -69,4 +69,30 @@ struct PureWaterBoundResidual {
   static ceres::CostFunction* Create(std::vector<double> beta_weights, double intensity, double weight);
 };
 
+// Correspondence (observations.h), one channel, over the union of the two views' nodes (Ceres takes a
+// block once per residual, and the views often share nodes):
+//   w * (alpha2 c2 (I1 - beta1) - alpha1 c1 (I2 - beta2)),  alpha_v = sum_i a_vi alpha_i, beta_v = sum_i b_vi beta_i.
+struct CorrespondenceResidual {
+  // Per node block: {a_1i, b_1i, a_2i, b_2i} (0 where the node is not one of the view's).
+  std::vector<std::array<double, 4>> coefficients;
+  double cos_theta_1, intensity_1, cos_theta_2, intensity_2;
+  double weight;
+
+  template <typename T>
+  bool operator()(T const* const* nodes, T* residual) const {
+    T alpha_1 = T(0.0), beta_1 = T(0.0), alpha_2 = T(0.0), beta_2 = T(0.0);
+    for (std::size_t i = 0; i < coefficients.size(); ++i) {
+      alpha_1 += coefficients[i][0] * nodes[i][0];
+      beta_1 += coefficients[i][1] * nodes[i][1];
+      alpha_2 += coefficients[i][2] * nodes[i][0];
+      beta_2 += coefficients[i][3] * nodes[i][1];
+    }
+    residual[0] = weight * (alpha_2 * cos_theta_2 * (intensity_1 - beta_1) - alpha_1 * cos_theta_1 * (intensity_2 - beta_2));
+    return true;
+  }
+
+  static ceres::CostFunction* Create(std::vector<std::array<double, 4>> coefficients, double cos_theta_1,
+                                     double intensity_1, double cos_theta_2, double intensity_2, double weight);
+};
+
 }  // namespace lutex

@@ -27,9 +27,26 @@ struct PureWaterObservation {
   double weight = 1.0;
 };
 
+// One image's view of a surface point of unknown albedo.
+struct SurfaceView {
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+  Eigen::Vector3d point_in_cam = Eigen::Vector3d::Zero();
+  Eigen::Vector3d intensity = Eigen::Vector3d::Zero();  // linear RGB
+  double cos_theta = 1.0;
+};
+
+// The same surface point seen by two images (paper Eq. 8 with lutex's shading): its albedo
+// (I - beta) / (alpha cos_theta) is the same in both, so
+//   alpha(x2) cos_theta2 (I1 - beta(x1)) - alpha(x1) cos_theta1 (I2 - beta(x2)) = 0.
+struct CorrespondenceObservation {
+  SurfaceView first, second;
+  Eigen::Vector3d weight = Eigen::Vector3d::Ones();  // per channel
+};
+
 struct ObservationSet {
   std::vector<KnownColorObservation> known_colors;
   std::vector<PureWaterObservation> pure_water;
+  std::vector<CorrespondenceObservation> correspondences;
 };
 
 }  // namespace lutex

@@ -59,5 +59,27 @@ TEST(CostFunctions, PureWaterBoundIsOneSided) {
   ExpectGradientsAgree(*cost, {{1.0, 0.3}, {1.0, 0.25}});
 }
 
+// Albedo 0.4 seen by view 1 (alpha 0.8, beta 0.1, cos 0.5 -> I1 = 0.26) and view 2 (alpha 0.3, beta 0.05,
+// cos 1 -> I2 = 0.17), view 1 on node a only, view 2 half on a and half on b: the residual is 0 at the
+// truth, and 0 too at the trivial solutions alpha = 0 and beta = I (why the calibration needs a gauge and
+// pure-water bounds without targets).
+TEST(CostFunctions, CorrespondenceVanishesAtTheTruthAndAtTheTrivialSolutions) {
+  // Node a: alpha 0.8 beta 0.1; node b chosen so that 0.5 a + 0.5 b = (0.3, 0.05): b = (-0.2, 0.0).
+  const std::unique_ptr<ceres::CostFunction> cost(
+      CorrespondenceResidual::Create({{1.0, 1.0, 0.5, 0.5}, {0.0, 0.0, 0.5, 0.5}}, 0.5, 0.26, 1.0, 0.17, 3.0));
+  const auto evaluate = [&](std::array<double, 2> a, std::array<double, 2> b) {
+    const double* parameters[] = {a.data(), b.data()};
+    double residual = 1e9;
+    EXPECT_TRUE(cost->Evaluate(parameters, &residual, nullptr));
+    return residual;
+  };
+  EXPECT_NEAR(evaluate({0.8, 0.1}, {-0.2, 0.0}), 0.0, 1e-15);
+  EXPECT_NEAR(evaluate({0.0, 0.1}, {0.0, 0.0}), 0.0, 1e-15);
+  EXPECT_NEAR(evaluate({0.8, 0.26}, {-0.2, 0.08}), 0.0, 1e-15);
+  // Doubling view 1's alpha halves its albedo: 3 * (0.3 * 1 * 0.16 - 1.6 * 0.5 * 0.12) = -0.144.
+  EXPECT_NEAR(evaluate({1.6, 0.1}, {-1.0, 0.0}), 3.0 * (0.3 * 0.16 - 1.6 * 0.5 * 0.12), 1e-12);
+  ExpectGradientsAgree(*cost, {{0.8, 0.1}, {0.3, 0.05}});
+}
+
 }  // namespace
 }  // namespace lutex
