@@ -5,26 +5,59 @@
 #include <sstream>
 #include <stdexcept>
 #include <iostream>
+#include <vector>
 
 #include "colmap_integration/calibrate_workspace.h"
 #include "colmap_integration/option_parser.h"
 
 namespace lutex {
 
+namespace {
+
+// "x,y,z" (or, when `scalar_allowed`, one value for all three).
+Eigen::Vector3d ParseVector3(std::string text, const std::string& option, bool scalar_allowed) {
+  std::replace(text.begin(), text.end(), ',', ' ');
+  std::istringstream fields(text);
+  std::vector<double> values;
+  double value;
+  while (fields >> value) values.push_back(value);
+  if (!fields.eof() || !(values.size() == 3 || (scalar_allowed && values.size() == 1))) {
+    throw std::invalid_argument(option + " expects " + (scalar_allowed ? "a number or " : "") + "x,y,z");
+  }
+  return values.size() == 1 ? Eigen::Vector3d::Constant(values[0]) : Eigen::Vector3d(values[0], values[1], values[2]);
+}
+
+}  // namespace
+
 int RunCalibrateCommand(int argc, char** argv) {
   CalibrateOptions options;
   std::string input_encoding = "srgb8";
   OptionParser parser(
-      "lutex calibrate --workspace W --mesh M --targets T.json [--pure-water W2] [--in-air] [--output L]",
-      "Fits the lookup table of light-and-water effects (alpha, beta per voxel and channel) from calibration\n"
-      "images of targets of known colour. W is a COLMAP workspace of the calibration images, M a mesh of the\n"
-      "targets in its world frame, T the targets file (planar polygons with their albedo; README, 'Targets').\n"
-      "Optional pure-water images (a workspace W2 of the same camera looking into empty water) bound the\n"
-      "backscatter from above. Writes the LUT L (default W/lutex/calibration/lut.lut), coverage.lut,\n"
-      "calibration_summary.json and slab pictures beside it.");
-  parser.AddPath("workspace", &options.workspace, "COLMAP workspace of the calibration images.", true);
-  parser.AddPath("mesh", &options.mesh, "Mesh of the targets in the model's world frame.", true);
-  parser.AddPath("targets", &options.targets, "Targets file (JSON).", true);
+      "lutex calibrate --workspace W --mesh M [--targets T.json [--targets-workspace W2 --targets-mesh M2]]\n"
+      "                [--correspondences [--grey-world V]] [--pure-water W3] [--in-air] [--output L]",
+      "Fits the lookup table of light-and-water effects (alpha, beta per voxel and channel). W is a COLMAP\n"
+      "workspace and M a mesh of its scene in the model's world frame. Constraints:\n"
+      "  --targets T: targets of known colour (planar polygons with their albedo; README, 'Targets'), seen in\n"
+      "    W's images, or in separate calibration images W2 of the same camera with their own mesh M2.\n"
+      "  --correspondences: the same surface seen by several of W's images restores to the same albedo\n"
+      "    (SLIC superpixels matched across views). With targets they fill what the targets did not reach;\n"
+      "    without, they fix the LUT up to a factor per channel, which --grey-world V sets (V: the mean albedo\n"
+      "    of the surveyed surfaces, e.g. 0.3, or r,g,b).\n"
+      "  --pure-water W3: images of the same camera looking into empty water bound the backscatter.\n"
+      "Writes the LUT L (default W/lutex/calibration/lut.lut), coverage.lut, calibration_summary.json and\n"
+      "slab pictures beside it.");
+  parser.AddPath("workspace", &options.workspace, "COLMAP workspace (images/, sparse/0 or sparse/).", true);
+  parser.AddPath("mesh", &options.mesh, "Mesh of W's scene in the model's world frame.", true);
+  parser.AddPath("targets", &options.targets, "Targets file (JSON).");
+  parser.AddPath("targets-workspace", &options.targets_workspace, "Separate calibration images of the targets.");
+  parser.AddPath("targets-mesh", &options.targets_mesh, "Mesh of the targets in W2's world frame.");
+  parser.AddFlag("correspondences", &options.correspondences, "Correspondence constraints from W's images.");
+  std::string grey_world;
+  parser.AddString("grey-world", &grey_world, "Without targets: mean albedo V or r,g,b of the surveyed surfaces.");
+  parser.AddInt("superpixels", &options.correspondence_extraction.superpixels.count,
+                "Superpixels per image for correspondences (paper: 300).");
+  parser.AddInt("partners", &options.correspondence_extraction.partners,
+                "Views each superpixel is matched in, at most.");
   parser.AddPath("pure-water", &options.pure_water, "Workspace of pure-water images (optional).");
   parser.AddPath("output", &options.output, "LUT file to write (default W/lutex/calibration/lut.lut).");
   parser.AddString("input-encoding", &input_encoding, "srgb8, linear16 or float.");
@@ -44,21 +77,18 @@ int RunCalibrateCommand(int argc, char** argv) {
   parser.AddDouble("z-far", &options.z_far, "Farthest slab's planar depth.");
   if (!parser.Parse(argc, argv, 2)) return 0;
   options.input_encoding = ParseImageEncoding(input_encoding);
-  {
-    std::replace(shading_light.begin(), shading_light.end(), ',', ' ');
-    std::istringstream fields(shading_light);
-    if (!(fields >> options.shading_light_in_cam.x() >> options.shading_light_in_cam.y() >> options.shading_light_in_cam.z())) {
-      throw std::invalid_argument("--shading-light expects x,y,z");
-    }
-  }
+  options.shading_light_in_cam = ParseVector3(shading_light, "--shading-light", false);
+  if (!grey_world.empty()) options.grey_world_albedo = ParseVector3(grey_world, "--grey-world", true);
   const CalibrateSummary summary = CalibrateWorkspace(options);
   const CalibrationSummary& c = summary.calibration;
   std::cout << std::fixed << std::setprecision(4) << "calibrate: " << summary.num_images << " images, "
-            << c.num_known_color << " known-colour and " << c.num_pure_water << " pure-water observations ("
+            << c.num_known_color << " known-colour, " << c.num_correspondences << " correspondence and "
+            << c.num_pure_water << " pure-water observations ("
             << summary.num_pure_water_images << " pure-water images, " << summary.num_pure_water_skipped
             << " skipped as showing a surface); "
             << "residual RMS " << c.known_color_rms.x() << " " << c.known_color_rms.y() << " " << c.known_color_rms.z()
-            << "; " << std::setprecision(0) << 100 * c.covered_fraction << " % of nodes covered; "
+            << "; correspondence albedo RMS " << c.correspondence_albedo_rms.x() << " " << c.correspondence_albedo_rms.y()
+            << " " << c.correspondence_albedo_rms.z() << "; " << std::setprecision(0) << 100 * c.covered_fraction << " % of nodes covered; "
             << std::setprecision(1) << c.seconds << " s\n"
             << "  LUT:      " << summary.lut.string() << "\n"
             << "  coverage: " << (summary.lut.parent_path() / "coverage.lut").string() << "\n";

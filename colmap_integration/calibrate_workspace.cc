@@ -8,6 +8,7 @@
 
 #include "colmap_integration/images_by_camera.h"
 #include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/survey_correspondences.h"
 #include "colmap_integration/workspace.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/targets.h"
@@ -61,6 +62,37 @@ const Camera& SingleImageSize(const SparseModel& model, const fs::path& where) {
   return first;
 }
 
+// Known-colour observations from the images of `workspace` (the targets' geometry from `scene`), per image
+// in parallel, gathered in image order so the solve is the same at any thread count.
+std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions& options,
+                                                          const std::vector<Target>& targets,
+                                                          const Workspace& workspace, const SparseModel& model,
+                                                          const RaycastScene& scene) {
+  KnownColorSamplingOptions sampling = options.sampling;
+  sampling.shading_light_in_cam = options.shading_light_in_cam;
+  std::map<std::uint32_t, std::vector<KnownColorObservation>> per_image;
+  std::mutex per_image_mutex;
+  ForEachImageWithRays(model, options.num_threads, "target images", [&](const Image& image, const CameraRays& rays) {
+    const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
+    const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
+    std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
+    // In a survey most images show no target; in calibration images that is worth a warning.
+    if (observations.empty() && !options.targets_workspace.empty()) {
+      LogWarning() << image.name << ": no target pixels found; the image is skipped";
+    }
+    std::lock_guard<std::mutex> lock(per_image_mutex);
+    per_image[image.image_id] = std::move(observations);
+  });
+  std::vector<KnownColorObservation> observations;
+  for (auto& [id, list] : per_image) observations.insert(observations.end(), list.begin(), list.end());
+  if (observations.empty()) {
+    throw std::runtime_error(options.targets.string() + ": no image of " + workspace.images_dir.string() +
+                             " shows any target pixel");
+  }
+  return observations;
+}
+
 // Pure-water bounds from the images of options.pure_water, screened for surfaces in view (skipped with a
 // warning naming the image and why).
 std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& options, const Camera& camera,
@@ -100,9 +132,20 @@ std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& 
 }  // namespace
 
 void CalibrateOptions::Check() const {
-  if (workspace.empty() || mesh.empty() || targets.empty()) {
-    throw std::invalid_argument("--workspace, --mesh and --targets are required");
+  if (workspace.empty() || mesh.empty()) throw std::invalid_argument("--workspace and --mesh are required");
+  if (targets.empty() && !correspondences) {
+    throw std::invalid_argument("give --targets (known colours), --correspondences (self-calibration), or both");
   }
+  if (targets_workspace.empty() != targets_mesh.empty()) {
+    throw std::invalid_argument("--targets-workspace and --targets-mesh go together");
+  }
+  if (!targets_workspace.empty() && targets.empty()) throw std::invalid_argument("--targets-workspace needs --targets");
+  if (targets.empty() && !(grey_world_albedo.minCoeff() > 0.0)) {
+    throw std::invalid_argument(
+        "without --targets, correspondences fix the LUT only up to a factor per channel: give --targets with one "
+        "known colour, or --grey-world V (the mean albedo of the surveyed surfaces) to set the scale");
+  }
+  if (correspondences) correspondence_extraction.Check();
   if (reference_water != "clear" && reference_water != "coastal") {
     throw std::invalid_argument("--reference-water must be clear or coastal");
   }
@@ -114,10 +157,24 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   options.Check();
   const Workspace workspace = FindWorkspace(options.workspace);
   const SparseModel model = ReadSparseModel(workspace.sparse_dir);
-  const std::vector<Target> targets = ReadTargets(options.targets);
+  const Camera& camera = SingleImageSize(model, workspace.sparse_dir);
+  const std::vector<Target> targets = options.targets.empty() ? std::vector<Target>() : ReadTargets(options.targets);
   const Mesh mesh = ReadMesh(options.mesh);
   const RaycastScene scene(mesh);
-  const Camera& camera = SingleImageSize(model, workspace.sparse_dir);
+  // Targets in separate calibration images, or in the workspace's own.
+  const bool separate_targets = !options.targets_workspace.empty();
+  const Workspace targets_workspace = separate_targets ? FindWorkspace(options.targets_workspace) : workspace;
+  const SparseModel targets_model = separate_targets ? ReadSparseModel(targets_workspace.sparse_dir) : SparseModel();
+  const Mesh targets_mesh = separate_targets ? ReadMesh(options.targets_mesh) : Mesh();
+  if (separate_targets) {
+    const Camera& targets_camera = SingleImageSize(targets_model, targets_workspace.sparse_dir);
+    if (targets_camera.width != camera.width || targets_camera.height != camera.height) {
+      throw std::runtime_error(targets_workspace.sparse_dir.string() + ": the target images are " +
+                               std::to_string(targets_camera.width) + "x" + std::to_string(targets_camera.height) +
+                               " but the survey's are " + std::to_string(camera.width) + "x" +
+                               std::to_string(camera.height) + "; a LUT is for one image size");
+    }
+  }
 
   CalibrationOptions calibration = options.calibration;
   calibration.grid.nx = options.nx;
@@ -128,41 +185,45 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   calibration.grid.image_width = static_cast<int>(camera.width);
   calibration.grid.image_height = static_cast<int>(camera.height);
   calibration.grid.shading_light_in_cam = options.shading_light_in_cam;
-  KnownColorSamplingOptions sampling = options.sampling;
-  sampling.shading_light_in_cam = options.shading_light_in_cam;
   calibration.levels = DefaultLevels(options.nx, options.ny);
   calibration.in_air = options.in_air;
   calibration.num_threads = options.num_threads;
+  calibration.grey_world_albedo = options.grey_world_albedo;
   calibration.Check();
-
-  // Known colours, per image in parallel, gathered in image order so the solve is the same at any
-  // thread count.
-  std::map<std::uint32_t, std::vector<KnownColorObservation>> per_image;
-  std::mutex per_image_mutex;
-  ForEachImageWithRays(model, options.num_threads, "calibration images", [&](const Image& image, const CameraRays& rays) {
-    const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
-    const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
-    std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
-    if (observations.empty()) LogWarning() << image.name << ": no target pixels found; the image is skipped";
-    std::lock_guard<std::mutex> lock(per_image_mutex);
-    per_image[image.image_id] = std::move(observations);
-  });
-  ObservationSet observations;
-  for (auto& [id, list] : per_image) {
-    observations.known_colors.insert(observations.known_colors.end(), list.begin(), list.end());
-  }
-  if (observations.known_colors.empty()) {
-    throw std::runtime_error(options.targets.string() + ": no calibration image shows any target pixel");
-  }
 
   CalibrateSummary summary;
   summary.num_images = model.images.size();
+  ObservationSet observations;
+  if (!targets.empty()) {
+    if (separate_targets) {
+      const RaycastScene targets_scene(targets_mesh);
+      observations.known_colors = KnownColorObservations(options, targets, targets_workspace, targets_model, targets_scene);
+      summary.num_target_images = targets_model.images.size();
+    } else {
+      observations.known_colors = KnownColorObservations(options, targets, workspace, model, scene);
+      summary.num_target_images = model.images.size();
+    }
+  }
+  if (options.correspondences) {
+    SurveyCorrespondenceOptions extraction = options.correspondence_extraction;
+    extraction.superpixels.shading_light_in_cam = options.shading_light_in_cam;
+    extraction.views.shading_light_in_cam = options.shading_light_in_cam;
+    extraction.input_encoding = options.input_encoding;
+    extraction.num_threads = options.num_threads;
+    const SurveyCorrespondences survey = ExtractSurveyCorrespondences(workspace, model, scene, extraction);
+    observations.correspondences = survey.correspondences;
+    summary.num_superpixel_samples = survey.num_samples;
+    if (observations.correspondences.empty()) {
+      throw std::runtime_error(workspace.images_dir.string() +
+                               ": no correspondences found (do the images overlap, and does the mesh cover them?)");
+    }
+  }
   if (!options.pure_water.empty()) {
     observations.pure_water = PureWaterObservations(options, camera, &summary);
   }
-  LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour and "
-            << observations.pure_water.size() << " pure-water observations";
+  LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour, "
+            << observations.correspondences.size() << " correspondence and " << observations.pure_water.size()
+            << " pure-water observations";
 
   const Mesh no_geometry;
   LightRig reference_rig = PointLightAtCamera();
@@ -185,6 +246,12 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   json["pure_water_max_violation"] = {result.summary.pure_water_max_violation.x(),
                                       result.summary.pure_water_max_violation.y(),
                                       result.summary.pure_water_max_violation.z()};
+  json["target_images"] = summary.num_target_images;
+  json["superpixel_samples"] = summary.num_superpixel_samples;
+  json["correspondences"] = result.summary.num_correspondences;
+  json["correspondence_albedo_rms"] = {result.summary.correspondence_albedo_rms.x(),
+                                       result.summary.correspondence_albedo_rms.y(),
+                                       result.summary.correspondence_albedo_rms.z()};
   json["pure_water_images"] = summary.num_pure_water_images;
   json["pure_water_images_skipped"] = summary.num_pure_water_skipped;
   json["covered_fraction"] = result.summary.covered_fraction;

@@ -1,8 +1,11 @@
 #pragma once
 
-// `lutex calibrate`: fits the LUT of a camera-and-lights rig from calibration images of targets of known
-// colour (targets file, see lib/calibration/targets.h) whose geometry comes from a COLMAP model of the
-// calibration images and a mesh of the targets, optionally with pure-water images (beta upper bounds).
+// `lutex calibrate`: fits the LUT of a camera-and-lights rig from
+//   - targets of known colour (targets file, see lib/calibration/targets.h) seen in the workspace's images
+//     or in separate calibration images (their own COLMAP model and mesh of the targets);
+//   - correspondences between the workspace's own survey images (survey_correspondences.h), with or
+//     without targets; without, the absolute scale comes from a grey-world albedo the user gives;
+//   - optionally pure-water images (beta upper bounds).
 //
 // Output: the LUT (lut_file.h), `coverage.lut` beside it (alpha = per-node data coverage in [0, 1]),
 // `calibration_summary.json` (residuals, iterations, coverage, time) and `slabs/` pictures.
@@ -11,6 +14,7 @@
 #include <filesystem>
 #include <string>
 
+#include "colmap_integration/survey_correspondences.h"
 #include "lib/calibration/calibrator.h"
 #include "lib/calibration/known_color_sampling.h"
 #include "lib/calibration/pure_water_sampling.h"
@@ -19,9 +23,18 @@
 namespace lutex {
 
 struct CalibrateOptions {
-  std::filesystem::path workspace;   // calibration images with their COLMAP model
-  std::filesystem::path mesh;        // the targets' geometry, in the model's world frame
-  std::filesystem::path targets;     // targets file
+  std::filesystem::path workspace;   // images with their COLMAP model (the survey, or calibration images)
+  std::filesystem::path mesh;        // their scene's geometry, in the model's world frame
+  std::filesystem::path targets;     // targets file (optional with correspondences)
+  // Optional: targets seen in separate calibration images of the same camera, with their own model and
+  // mesh; empty: the targets are looked for in `workspace`.
+  std::filesystem::path targets_workspace;
+  std::filesystem::path targets_mesh;
+  // Correspondence constraints from the workspace's images.
+  bool correspondences = false;
+  SurveyCorrespondenceOptions correspondence_extraction;
+  // Without targets: the mean albedo per channel of the surveyed surfaces (grey world), setting the scale.
+  Eigen::Vector3d grey_world_albedo = Eigen::Vector3d::Zero();
   std::filesystem::path pure_water;  // optional: a workspace of pure-water images of the same camera
   std::filesystem::path output;      // the LUT file; empty: W/lutex/calibration/lut.lut
   ImageEncoding input_encoding = ImageEncoding::kSrgb8;
@@ -47,6 +60,8 @@ struct CalibrateOptions {
 struct CalibrateSummary {
   std::filesystem::path lut;
   std::size_t num_images = 0;
+  std::size_t num_target_images = 0;
+  std::size_t num_superpixel_samples = 0;
   std::size_t num_pure_water_images = 0;
   std::size_t num_pure_water_skipped = 0;  // images that seemed to show a surface
   CalibrationSummary calibration;

@@ -222,7 +222,11 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
     }
   }
   ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  // Correspondences link nodes far apart in the frustum, and a sparse Cholesky factor of such a problem
+  // fills in (measured: 8x slower on the Blender seafloor); conjugate gradients on the normal equations
+  // need no factor.
+  solver_options.linear_solver_type =
+      input.observations.correspondences.empty() ? ceres::SPARSE_NORMAL_CHOLESKY : ceres::CGNR;
   solver_options.max_num_iterations = input.options.max_iterations;
   solver_options.num_threads = 1;  // parallel over channels instead
   solver_options.logging_type = ceres::SILENT;

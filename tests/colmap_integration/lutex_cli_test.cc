@@ -89,6 +89,23 @@ TEST(LutexCli, MalformedNumberNamesTheOption) {
   EXPECT_NE(result.output.find("--z-near expects a number, not '0,5'"), std::string::npos) << result.output;
 }
 
+// Correspondences without any known colour leave one factor per channel open: the error says what fixes it.
+TEST(LutexCli, SelfCalibrationWithoutAScaleSaysWhatToGive) {
+  const testing::CommandResult result =
+      testing::RunCommand(std::string(LUTEX_BINARY) + " calibrate --workspace W --mesh M.ply --correspondences");
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("--grey-world"), std::string::npos) << result.output;
+  const testing::CommandResult neither =
+      testing::RunCommand(std::string(LUTEX_BINARY) + " calibrate --workspace W --mesh M.ply");
+  EXPECT_EQ(neither.exit_code, 1);
+  EXPECT_NE(neither.output.find("give --targets (known colours), --correspondences (self-calibration), or both"),
+            std::string::npos) << neither.output;
+  const testing::CommandResult bad_grey = testing::RunCommand(
+      std::string(LUTEX_BINARY) + " calibrate --workspace W --mesh M.ply --correspondences --grey-world 0.3,0.3");
+  EXPECT_EQ(bad_grey.exit_code, 1);
+  EXPECT_NE(bad_grey.output.find("--grey-world expects a number or x,y,z"), std::string::npos) << bad_grey.output;
+}
+
 TEST(LutexCli, HelpTeachesTheOptions) {
   const testing::CommandResult result = testing::RunCommand(std::string(LUTEX_BINARY) + " raycast --help");
   EXPECT_EQ(result.exit_code, 0);

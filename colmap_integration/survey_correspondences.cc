@@ -1,0 +1,134 @@
+#include "colmap_integration/survey_correspondences.h"
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+#include "colmap_integration/images_by_camera.h"
+
+namespace lutex {
+
+namespace {
+
+struct ImageSamples {
+  std::vector<SurfaceSample> samples;
+  std::vector<Eigen::Vector3d> points_in_world;
+  std::vector<double> footprints_in_world;  // radius, scene units
+  Eigen::Vector3d look_at = Eigen::Vector3d::Zero();
+};
+
+// A sample's view found in a candidate partner: which sample, which candidate (its rank), and the view.
+struct Match {
+  std::size_t sample = 0;
+  std::size_t rank = 0;
+  SurfaceView view;
+};
+
+// Candidate partners per image, best first.
+std::map<std::uint32_t, std::vector<std::uint32_t>> CandidatePartners(const SparseModel& model,
+                                                                       const std::map<std::uint32_t, ImageSamples>& samples,
+                                                                       std::size_t count) {
+  std::map<std::uint32_t, std::map<std::uint32_t, std::size_t>> shared;
+  for (const auto& [id, point] : model.points3D) {
+    for (std::size_t i = 0; i < point.track.size(); ++i) {
+      for (std::size_t j = 0; j < point.track.size(); ++j) {
+        if (point.track[i].image_id != point.track[j].image_id) ++shared[point.track[i].image_id][point.track[j].image_id];
+      }
+    }
+  }
+  std::map<std::uint32_t, std::vector<std::uint32_t>> candidates;
+  for (const auto& [a, a_samples] : samples) {
+    if (a_samples.samples.empty()) continue;
+    std::vector<std::pair<double, std::uint32_t>> ranked;  // (score, image), smaller is better
+    for (const auto& [b, b_samples] : samples) {
+      if (b == a || b_samples.samples.empty()) continue;
+      if (!shared.empty()) {
+        const auto found = shared[a].find(b);
+        if (found != shared[a].end()) ranked.emplace_back(-static_cast<double>(found->second), b);
+      } else {
+        ranked.emplace_back((b_samples.look_at - a_samples.look_at).norm(), b);
+      }
+    }
+    std::sort(ranked.begin(), ranked.end());
+    for (std::size_t i = 0; i < std::min(count, ranked.size()); ++i) candidates[a].push_back(ranked[i].second);
+  }
+  return candidates;
+}
+
+}  // namespace
+
+void SurveyCorrespondenceOptions::Check() const {
+  superpixels.Check();
+  views.Check();
+  if (partners < 1 || candidates < partners) throw std::invalid_argument("need 1 <= partners <= candidates");
+}
+
+SurveyCorrespondences ExtractSurveyCorrespondences(const Workspace& workspace, const SparseModel& model,
+                                                   const RaycastScene& scene,
+                                                   const SurveyCorrespondenceOptions& options) {
+  options.Check();
+  std::map<std::uint32_t, ImageSamples> samples;
+  std::mutex mutex;
+  ForEachImageWithRays(model, options.num_threads, "superpixels", [&](const Image& image, const CameraRays& rays) {
+    const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
+    ImageSamples result;
+    result.samples = SampleSuperpixels(observed, maps, rays, options.superpixels);
+    const Rigid3d world_from_cam = image.cam_from_world.Inverse();
+    for (const SurfaceSample& sample : result.samples) {
+      result.points_in_world.push_back(world_from_cam * sample.view.point_in_cam);
+      result.footprints_in_world.push_back(sample.footprint_radius * sample.view.point_in_cam.z() /
+                                           rays.camera().FocalLengthX());
+      result.look_at += result.points_in_world.back() / static_cast<double>(result.samples.size());
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    samples[image.image_id] = std::move(result);
+  });
+  const auto candidates = CandidatePartners(model, samples, static_cast<std::size_t>(options.candidates));
+  // Who asks image B: (image A, rank of B among A's candidates).
+  std::map<std::uint32_t, std::vector<std::pair<std::uint32_t, std::size_t>>> askers;
+  for (const auto& [a, list] : candidates) {
+    for (std::size_t rank = 0; rank < list.size(); ++rank) askers[list[rank]].emplace_back(a, rank);
+  }
+
+  std::map<std::uint32_t, std::vector<Match>> matches;  // per image A
+  ForEachImageWithRays(model, options.num_threads, "correspondences", [&](const Image& image, const CameraRays& rays) {
+    const auto asking = askers.find(image.image_id);
+    if (asking == askers.end()) return;
+    const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
+    const ViewedImage other{observed, maps, rays, image.cam_from_world};
+    std::vector<std::pair<std::uint32_t, Match>> found;
+    for (const auto& [a, rank] : asking->second) {
+      const ImageSamples& a_samples = samples.at(a);
+      for (std::size_t s = 0; s < a_samples.samples.size(); ++s) {
+        if (auto view = ViewInOtherImage(a_samples.points_in_world[s], a_samples.footprints_in_world[s], other, options.views)) {
+          found.emplace_back(a, Match{s, rank, *view});
+        }
+      }
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    for (auto& [a, match] : found) matches[a].push_back(std::move(match));
+  });
+
+  SurveyCorrespondences result;
+  result.num_images = model.images.size();
+  for (auto& [a, list] : matches) {
+    // Deterministic: by sample, then candidate rank; the first `partners` per sample.
+    std::sort(list.begin(), list.end(), [](const Match& x, const Match& y) {
+      return x.sample != y.sample ? x.sample < y.sample : x.rank < y.rank;
+    });
+    const ImageSamples& a_samples = samples.at(a);
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      kept = i > 0 && list[i].sample == list[i - 1].sample ? kept + 1 : 0;
+      if (kept >= static_cast<std::size_t>(options.partners)) continue;
+      result.correspondences.push_back({a_samples.samples[list[i].sample].view, list[i].view, Eigen::Vector3d::Ones()});
+    }
+  }
+  for (const auto& [id, image_samples] : samples) result.num_samples += image_samples.samples.size();
+  return result;
+}
+
+}  // namespace lutex
