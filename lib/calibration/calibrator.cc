@@ -11,6 +11,7 @@
 #include "lib/calibration/calibration_weights.h"
 #include "lib/calibration/cost_functions.h"
 #include "lib/util/parallel_for.h"
+#include "lib/util/median.h"
 
 namespace lutex {
 namespace {
@@ -22,12 +23,6 @@ FrustumLutGrid LevelGrid(const FrustumLutGrid& finest, const std::pair<int, int>
   grid.nx = level.first;
   grid.ny = level.second;
   return grid;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
 }
 
 // The reference LUT rescaled so its alpha matches the data's typical I / (cos_theta rho): from the known
@@ -52,8 +47,8 @@ FrustumLut ScaledReference(const FrustumLut& reference, const ObservationSet& ob
       }
     }
   }
-  const double reference_median = Median(reference_ratio);
-  const double scale = reference_median > 0 ? Median(data_ratio) / reference_median : 1.0;
+  const double reference_median = MedianInPlace(reference_ratio);
+  const double scale = reference_median > 0 ? MedianInPlace(data_ratio) / reference_median : 1.0;
   FrustumLut scaled = reference;
   for (int n = 0; n < scaled.grid().NumNodes(); ++n) {
     scaled.node(n).alpha *= scale;

@@ -6,18 +6,9 @@
 #include <vector>
 
 #include "lib/model/image_formation.h"
+#include "lib/util/median.h"
 
 namespace lutex {
-
-namespace {
-
-double Median(std::vector<float>& values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
-}  // namespace
 
 void CorrespondenceViewOptions::Check() const {
   if (!(max_relative_depth_difference > 0.0) || !(max_relative_color_spread > 0.0) || max_footprint_pixels < 1) {
@@ -67,10 +58,10 @@ std::optional<SurfaceView> ViewInOtherImage(const Eigen::Vector3d& point_in_worl
       for (int c = 0; c < 3; ++c) channels[c].push_back(value[c]);
     }
   }
-  for (int c = 0; c < 3; ++c) view.intensity[c] = Median(channels[c]);
+  for (int c = 0; c < 3; ++c) view.intensity[c] = MedianInPlace(channels[c]);
   std::vector<float> deviation;
   for (float value : channels[1]) deviation.push_back(static_cast<float>(std::abs(value - view.intensity.y())));
-  if (!(view.intensity.y() > 0.0) || Median(deviation) > options.max_relative_color_spread * view.intensity.y()) {
+  if (!(view.intensity.y() > 0.0) || MedianInPlace(deviation) > options.max_relative_color_spread * view.intensity.y()) {
     return std::nullopt;
   }
   return view;

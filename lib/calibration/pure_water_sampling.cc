@@ -8,16 +8,13 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "lib/util/median.h"
+
 namespace lutex {
 
 namespace {
 
 constexpr int kThumbnailWidth = 160;
-
-double Median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-  return values[values.size() / 2];
-}
 
 }  // namespace
 
@@ -44,7 +41,7 @@ PureWaterImageStats MeasurePureWaterImage(const cv::Mat& linear) {
   double noise[3];
   for (int c = 0; c < 3; ++c) {
     std::vector<double> values(channels[c].begin<float>(), channels[c].end<float>());
-    noise[c] = 1.4826 * Median(std::move(values));
+    noise[c] = 1.4826 * MedianInPlace(values);
   }
   int structured = 0;
   for (int row = 0; row < thumbnail.rows; ++row) {
@@ -72,7 +69,7 @@ std::vector<std::string> ScreenPureWaterImages(const std::vector<PureWaterImageS
   for (int c = 0; c < 3; ++c) {
     std::vector<double> means;
     for (const PureWaterImageStats& image : images) means.push_back(image.mean[c]);
-    median_mean[c] = Median(means);
+    median_mean[c] = MedianInPlace(means);
   }
   char text[160];
   for (std::size_t i = 0; i < images.size(); ++i) {

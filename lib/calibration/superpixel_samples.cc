@@ -9,16 +9,11 @@
 
 #include "lib/image/image_io.h"
 #include "lib/model/image_formation.h"
+#include "lib/util/median.h"
 
 namespace lutex {
 
 namespace {
-
-double Median(std::vector<float>& values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 // 8-bit sRGB Lab of a linear image: SLIC's colour distance is meant for a perceptual space.
 cv::Mat PerceptualLab(const cv::Mat& linear) {
@@ -124,12 +119,12 @@ std::vector<SurfaceSample> SampleSuperpixels(const cv::Mat& image, const Geometr
   for (std::size_t label = 0; label < red.size(); ++label) {
     if (rejected[label] || depth_inside[label] < 2.0f || green[label].size() < 5) continue;
     const auto [lowest, highest] = std::minmax_element(depths[label].begin(), depths[label].end());
-    const double median_depth = Median(depths[label]);
+    const double median_depth = MedianInPlace(depths[label]);
     if (*highest - *lowest > options.max_relative_depth_range * median_depth) continue;
-    const Eigen::Vector3d color(Median(red[label]), Median(green[label]), Median(blue[label]));
+    const Eigen::Vector3d color(MedianInPlace(red[label]), MedianInPlace(green[label]), MedianInPlace(blue[label]));
     std::vector<float> deviation;
     for (float value : green[label]) deviation.push_back(static_cast<float>(std::abs(value - color.y())));
-    if (!(color.y() > 0.0) || Median(deviation) > options.max_relative_color_spread * color.y()) continue;
+    if (!(color.y() > 0.0) || MedianInPlace(deviation) > options.max_relative_color_spread * color.y()) continue;
     const cv::Point pixel = full_pixel(centre[label].x, centre[label].y);
     const float depth = maps.depth.at<float>(pixel);
     const cv::Vec3f normal = maps.normal.at<cv::Vec3f>(pixel);
