@@ -10,6 +10,7 @@
 
 #include "lib/calibration/calibration_weights.h"
 #include "lib/calibration/cost_functions.h"
+#include "lib/model/image_formation.h"
 #include "lib/util/parallel_for.h"
 #include "lib/util/median.h"
 
@@ -57,15 +58,10 @@ FrustumLut ScaledReference(const FrustumLut& reference, const ObservationSet& ob
   return scaled;
 }
 
-// The albedo a view restores to with `lut`, per channel (NaN where alpha cos_theta is not positive).
+// The albedo a view restores to with `lut`, per channel (not finite where alpha is 0).
 Eigen::Vector3d ViewAlbedo(const FrustumLut& lut, const SurfaceView& view) {
   const LutNode node = lut.Lookup(view.pixel.x(), view.pixel.y(), view.point_in_cam.z());
-  Eigen::Vector3d albedo;
-  for (int c = 0; c < 3; ++c) {
-    const double signal = node.alpha[c] * view.cos_theta;
-    albedo[c] = signal > 0.0 ? (view.intensity[c] - node.beta[c]) / signal : std::nan("");
-  }
-  return albedo;
+  return RestoreAlbedo(node.alpha, node.beta, view.cos_theta, view.intensity);
 }
 
 // The node the correspondences touch most (interpolation weight summed), which holds the gauge when no

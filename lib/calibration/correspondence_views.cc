@@ -59,9 +59,8 @@ std::optional<SurfaceView> ViewInOtherImage(const Eigen::Vector3d& point_in_worl
     }
   }
   for (int c = 0; c < 3; ++c) view.intensity[c] = MedianInPlace(channels[c]);
-  std::vector<float> deviation;
-  for (float value : channels[1]) deviation.push_back(static_cast<float>(std::abs(value - view.intensity.y())));
-  if (!(view.intensity.y() > 0.0) || MedianInPlace(deviation) > options.max_relative_color_spread * view.intensity.y()) {
+  if (!(view.intensity.y() > 0.0) ||
+      MedianAbsoluteDeviation(channels[1], view.intensity.y()) > options.max_relative_color_spread * view.intensity.y()) {
     return std::nullopt;
   }
   return view;

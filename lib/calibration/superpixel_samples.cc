@@ -17,18 +17,8 @@ namespace {
 
 // 8-bit sRGB Lab of a linear image: SLIC's colour distance is meant for a perceptual space.
 cv::Mat PerceptualLab(const cv::Mat& linear) {
-  cv::Mat encoded(linear.size(), CV_8UC3);
-  for (int row = 0; row < linear.rows; ++row) {
-    for (int col = 0; col < linear.cols; ++col) {
-      const cv::Vec3f value = linear.at<cv::Vec3f>(row, col);
-      for (int c = 0; c < 3; ++c) {
-        encoded.at<cv::Vec3b>(row, col)[c] =
-            cv::saturate_cast<uchar>(255.0 * LinearToSrgb(std::clamp(static_cast<double>(value[c]), 0.0, 1.0)));
-      }
-    }
-  }
   cv::Mat lab;
-  cv::cvtColor(encoded, lab, cv::COLOR_RGB2Lab);
+  cv::cvtColor(EncodeLinearImage(linear, ImageEncoding::kSrgb8), lab, cv::COLOR_BGR2Lab);
   return lab;
 }
 
@@ -122,9 +112,10 @@ std::vector<SurfaceSample> SampleSuperpixels(const cv::Mat& image, const Geometr
     const double median_depth = MedianInPlace(depths[label]);
     if (*highest - *lowest > options.max_relative_depth_range * median_depth) continue;
     const Eigen::Vector3d color(MedianInPlace(red[label]), MedianInPlace(green[label]), MedianInPlace(blue[label]));
-    std::vector<float> deviation;
-    for (float value : green[label]) deviation.push_back(static_cast<float>(std::abs(value - color.y())));
-    if (!(color.y() > 0.0) || MedianInPlace(deviation) > options.max_relative_color_spread * color.y()) continue;
+    if (!(color.y() > 0.0) ||
+        MedianAbsoluteDeviation(green[label], color.y()) > options.max_relative_color_spread * color.y()) {
+      continue;
+    }
     const cv::Point pixel = full_pixel(centre[label].x, centre[label].y);
     const float depth = maps.depth.at<float>(pixel);
     const cv::Vec3f normal = maps.normal.at<cv::Vec3f>(pixel);

@@ -99,18 +99,24 @@ cv::Mat ReadLinearImage(const std::filesystem::path& path, ImageEncoding encodin
                              (depth == CV_8U ? "8-bit" : depth == CV_16U ? "16-bit" : "float") +
                              " samples but the encoding is " + ImageEncodingName(encoding));
   }
-  cv::Mat linear(stored.size(), CV_32FC3);
+  return DecodeLinearImage(stored, encoding);
+}
+
+cv::Mat DecodeLinearImage(const cv::Mat& picture, ImageEncoding encoding) {
+  CV_Assert(picture.channels() == 3);
+  cv::Mat linear(picture.size(), CV_32FC3);
   if (encoding == ImageEncoding::kSrgb8) {
+    CV_Assert(picture.depth() == CV_8U);
     const float* table = SrgbDecodeTable();
-    for (int row = 0; row < stored.rows; ++row) {
-      const auto* in = stored.ptr<cv::Vec3b>(row);
+    for (int row = 0; row < picture.rows; ++row) {
+      const auto* in = picture.ptr<cv::Vec3b>(row);
       auto* out = linear.ptr<cv::Vec3f>(row);
-      for (int col = 0; col < stored.cols; ++col) out[col] = cv::Vec3f(table[in[col][2]], table[in[col][1]], table[in[col][0]]);
+      for (int col = 0; col < picture.cols; ++col) out[col] = cv::Vec3f(table[in[col][2]], table[in[col][1]], table[in[col][0]]);
     }
     return linear;
   }
   cv::Mat as_float;
-  stored.convertTo(as_float, CV_32FC3, encoding == ImageEncoding::kLinear16 ? 1.0 / 65535.0 : 1.0);
+  picture.convertTo(as_float, CV_32FC3, encoding == ImageEncoding::kLinear16 ? 1.0 / 65535.0 : 1.0);
   cv::cvtColor(as_float, linear, cv::COLOR_BGR2RGB);
   return linear;
 }

@@ -39,4 +39,8 @@ void WriteEncodedImage(const cv::Mat& picture, const std::filesystem::path& path
 // The encoded 8-bit BGR or 16-bit BGR picture that WriteLinearImage would write (for tests and previews).
 cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding);
 
+// The inverse: linear RGB CV_32FC3 from a 3-channel BGR picture as ReadLinearImage decodes a file's
+// samples (the picture's depth must suit `encoding`). Decode(Encode(x)) is x as that encoding stores it.
+cv::Mat DecodeLinearImage(const cv::Mat& picture, ImageEncoding encoding);
+
 }  // namespace lutex

@@ -26,16 +26,7 @@ constexpr int kWidth = 160, kHeight = 120;
 
 // 8-bit sRGB quantisation of a linear image, as a camera's JPEG would have it.
 cv::Mat Quantised(const cv::Mat& linear) {
-  cv::Mat out(linear.size(), CV_32FC3);
-  for (int row = 0; row < linear.rows; ++row) {
-    for (int col = 0; col < linear.cols; ++col) {
-      for (int c = 0; c < 3; ++c) {
-        const double value = std::clamp<double>(linear.at<cv::Vec3f>(row, col)[c], 0.0, 1.0);
-        out.at<cv::Vec3f>(row, col)[c] = static_cast<float>(SrgbToLinear(std::round(255.0 * LinearToSrgb(value)) / 255.0));
-      }
-    }
-  }
-  return out;
+  return DecodeLinearImage(EncodeLinearImage(linear, ImageEncoding::kSrgb8), ImageEncoding::kSrgb8);
 }
 
 struct Frame {

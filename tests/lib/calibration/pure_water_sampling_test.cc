@@ -29,18 +29,9 @@ cv::Mat NoisyFrame(const Simulator& simulator, const CameraRays& rays, const Rig
   sensor.shot_noise = 0.01;
   sensor.read_noise = 0.002;
   sensor.seed = 11;
-  cv::Mat encoded = ApplySensor(simulator.Render(rays, pose), sensor, index);
   // Through 8-bit sRGB, as a camera's JPEG would be.
-  cv::Mat linear(encoded.size(), CV_32FC3);
-  for (int row = 0; row < encoded.rows; ++row) {
-    for (int col = 0; col < encoded.cols; ++col) {
-      for (int c = 0; c < 3; ++c) {
-        const double level = std::round(255.0 * LinearToSrgb(std::clamp<double>(encoded.at<cv::Vec3f>(row, col)[c], 0.0, 1.0)));
-        linear.at<cv::Vec3f>(row, col)[c] = static_cast<float>(SrgbToLinear(level / 255.0));
-      }
-    }
-  }
-  return linear;
+  const cv::Mat linear = ApplySensor(simulator.Render(rays, pose), sensor, index);
+  return DecodeLinearImage(EncodeLinearImage(linear, ImageEncoding::kSrgb8), ImageEncoding::kSrgb8);
 }
 
 TEST(PureWaterSampling, SimulatedOpenWaterPassesAndAFrameWithTheSeafloorIsCaught) {
