@@ -10,6 +10,7 @@
 #include "colmap_integration/raycast_command.h"
 #include "colmap_integration/restore_command.h"
 #include "colmap_integration/simulate_command.h"
+#include "colmap_integration/texture_command.h"
 
 namespace {
 
@@ -24,6 +25,7 @@ const Command kCommands[] = {
     {"raycast", &lutex::RunRaycastCommand, "per-image depth and normal maps of a mesh (COLMAP .bin + previews)"},
     {"restore", &lutex::RunRestoreCommand, "restore images to albedo with a calibrated LUT, with confidence maps"},
     {"simulate", &lutex::RunSimulateCommand, "render a scene description into a COLMAP workspace with ground truth"},
+    {"texture", &lutex::RunTextureCommand, "bake one albedo texture onto the mesh and write GLB (or glTF, OBJ, PLY)"},
 };
 
 void PrintUsage(std::ostream& out) {

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs everything lutex needs to build and test on Debian 12 (bookworm), from Debian's archive only.
-# Idempotent: packages already present are left as they are. Run as root (or through sudo).
+# Installs everything lutex needs to build and test on Debian 12 (bookworm): C++ libraries and tools from
+# Debian's archive, and the Khronos glTF-Validator (which checks lutex's GLB output) from the npm registry,
+# pinned by scripts/gltf_validator/package-lock.json. Idempotent: what is present is left as it is.
+# Run as root (or through sudo).
 set -euo pipefail
 
 packages=(
@@ -19,14 +21,24 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
-if [ "${#missing[@]}" -eq 0 ]; then
-  echo "install_dependencies: all ${#packages[@]} packages already installed"
-  exit 0
+# Node.js and npm for the glTF validator: the machine's own when present, else Debian's.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  missing+=(nodejs npm)
 fi
 
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-echo "install_dependencies: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install_dependencies: all ${#packages[@]} packages already installed"
+else
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+  echo "install_dependencies: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+validator_dir="$(dirname "$0")/gltf_validator"
+if [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]; then
+  echo "install_dependencies: installing the glTF validator (npm ci in $validator_dir)"
+  npm ci --prefix "$validator_dir" --no-audit --no-fund --loglevel=error
+fi

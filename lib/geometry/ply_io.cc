@@ -274,14 +274,15 @@ Mesh ReadPly(std::istream& stream) {
   return mesh;
 }
 
-void WritePly(const Mesh& mesh, std::ostream& stream) {
+void WritePly(const Mesh& mesh, std::ostream& stream, const std::vector<std::string>& comments) {
   const bool colours = !mesh.vertex_colors.empty();
   const bool texcoords = !mesh.vertex_texcoords.empty();
   const bool corners = !mesh.corner_texcoords.empty();
   const bool normals = !mesh.vertex_normals.empty();
   const bool face_colours = !mesh.face_colors.empty();
-  stream << "ply\nformat binary_little_endian 1.0\ncomment written by lutex\n"
-         << "element vertex " << mesh.vertices.size() << "\n"
+  stream << "ply\nformat binary_little_endian 1.0\ncomment written by lutex\n";
+  for (const std::string& comment : comments) stream << "comment " << comment << "\n";
+  stream << "element vertex " << mesh.vertices.size() << "\n"
          << "property double x\nproperty double y\nproperty double z\n";
   if (normals) stream << "property float nx\nproperty float ny\nproperty float nz\n";
   if (colours) stream << "property uchar red\nproperty uchar green\nproperty uchar blue\n";

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <istream>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include "lib/geometry/mesh.h"
 
@@ -18,6 +20,7 @@ namespace lutex {
 
 // Throws std::runtime_error (without a file name) on a malformed header or truncated data.
 Mesh ReadPly(std::istream& stream);
-void WritePly(const Mesh& mesh, std::ostream& stream);
+// `comments`: extra header comment lines (e.g. "TextureFile model.png", as COLMAP's texturer writes).
+void WritePly(const Mesh& mesh, std::ostream& stream, const std::vector<std::string>& comments = {});
 
 }  // namespace lutex

@@ -1,0 +1,126 @@
+#include "colmap_integration/texture_workspace.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/workspace.h"
+#include "lib/geometry/mesh_io.h"
+#include "lib/util/logging.h"
+#include "texturing/textured_mesh_io.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The image of `name` in `folder`: as named, or with the extension lutex restore gives 16-bit and float
+// output. Empty when none exists.
+fs::path FindImage(const fs::path& folder, const std::string& name) {
+  fs::path path = folder / name;
+  if (fs::exists(path)) return path;
+  for (const char* extension : {".png", ".exr"}) {
+    fs::path renamed = path;
+    renamed.replace_extension(extension);
+    if (fs::exists(renamed)) return renamed;
+  }
+  return {};
+}
+
+// An 8-bit confidence map (255 = 1) as CV_32FC3 RGB.
+cv::Mat ReadConfidence(const fs::path& path, const Camera& camera) {
+  const cv::Mat encoded = cv::imread(path.string(), cv::IMREAD_COLOR);
+  if (encoded.empty()) throw std::runtime_error(path.string() + ": cannot read the confidence map");
+  if (encoded.cols != static_cast<int>(camera.width) || encoded.rows != static_cast<int>(camera.height)) {
+    throw std::runtime_error(path.string() + ": the confidence map is " + std::to_string(encoded.cols) + "x" +
+                             std::to_string(encoded.rows) + " but its camera is " + std::to_string(camera.width) +
+                             "x" + std::to_string(camera.height));
+  }
+  cv::Mat rgb;
+  cv::cvtColor(encoded, rgb, cv::COLOR_BGR2RGB);
+  rgb.convertTo(rgb, CV_32FC3, 1.0 / 255.0);
+  return rgb;
+}
+
+}  // namespace
+
+void TextureOptions::Check() const {
+  if (workspace.empty()) throw std::invalid_argument("--workspace is required");
+  if (mesh.empty()) throw std::invalid_argument("--mesh is required");
+  if (!output.empty()) CheckTexturedMeshPath(output);
+  if (page_encoding == ImageEncoding::kFloat) throw std::invalid_argument("pages are srgb8 or linear16");
+  baking.Check();
+}
+
+TextureSummary TextureWorkspace(const TextureOptions& options) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  const Workspace workspace = FindWorkspace(options.workspace);
+  const SparseModel model = ReadSparseModel(workspace.sparse_dir);
+  TextureSummary summary;
+  summary.images = options.images;
+  if (summary.images.empty()) {
+    summary.images = workspace.OutputDir() / "restored";
+    if (!fs::is_directory(summary.images)) {
+      summary.images = workspace.images_dir;
+      LogWarning() << "texture: " << (workspace.OutputDir() / "restored").string()
+                   << " does not exist; texturing the unrestored images of " << summary.images.string()
+                   << " (run lutex restore first for albedo)";
+    }
+  }
+  if (!fs::is_directory(summary.images)) throw std::runtime_error(summary.images.string() + ": no such folder");
+  if (options.use_confidence) {
+    summary.confidence = options.confidence;
+    if (summary.confidence.empty()) {
+      fs::path beside = summary.images;
+      beside += "_confidence";
+      if (fs::is_directory(beside)) summary.confidence = beside;
+    } else if (!fs::is_directory(summary.confidence)) {
+      throw std::runtime_error(summary.confidence.string() + ": no such folder");
+    }
+  }
+  std::vector<TextureView> views;
+  std::vector<fs::path> image_paths, confidence_paths;
+  for (const auto& [id, image] : model.images) {
+    const fs::path path = FindImage(summary.images, image.name);
+    if (path.empty()) {
+      throw std::runtime_error((summary.images / image.name).string() + ": no such image (image " +
+                               std::to_string(id) + " of the model)");
+    }
+    image_paths.push_back(path);
+    if (!summary.confidence.empty()) {
+      fs::path confidence = summary.confidence / image.name;
+      confidence.replace_extension(".png");
+      if (!fs::exists(confidence)) throw std::runtime_error(confidence.string() + ": no such confidence map");
+      confidence_paths.push_back(confidence);
+    }
+    views.push_back({image.name, model.cameras.at(image.camera_id), image.cam_from_world});
+  }
+  const Mesh mesh = ReadMesh(options.mesh);
+  const fs::path output = options.output.empty() ? workspace.OutputDir() / "model.glb" : options.output;
+
+  ViewImageSource source;
+  source.linear_rgb = [&](std::size_t v) {
+    const cv::Mat image = ReadLinearImage(image_paths[v], options.image_encoding);
+    if (image.cols != static_cast<int>(views[v].camera.width) || image.rows != static_cast<int>(views[v].camera.height)) {
+      throw std::runtime_error(image_paths[v].string() + ": the image is " + std::to_string(image.cols) + "x" +
+                               std::to_string(image.rows) + " but its camera is " +
+                               std::to_string(views[v].camera.width) + "x" + std::to_string(views[v].camera.height));
+    }
+    return image;
+  };
+  if (!confidence_paths.empty()) {
+    source.confidence = [&](std::size_t v) { return ReadConfidence(confidence_paths[v], views[v].camera); };
+  }
+  TextureBakingResult result = BakeTexture(mesh, views, source, options.baking);
+  summary.baking = result.summary;
+  summary.written = WriteTexturedMesh(result.textured, output, options.page_encoding);
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace lutex

@@ -1,0 +1,138 @@
+// The exporters, checked by reading their output back and by the Khronos glTF-Validator.
+
+#include "texturing/gltf_export.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include "lib/geometry/mesh_io.h"
+#include "lib/geometry/mesh_primitives.h"
+#include "tests/support/gltf_validator.h"
+#include "tests/support/temp_dir.h"
+#include "texturing/textured_mesh_io.h"
+
+namespace lutex {
+namespace {
+
+// A georeferenced-looking grid (coordinates near 500 km, 6000 km) on one page whose colour is a
+// gradient of u, v; the last face untextured.
+TexturedMesh GradientGrid(int cells) {
+  TexturedMesh textured;
+  textured.mesh = MakeHeightFieldMesh([](double x, double y) { return 0.1 * x * y; }, 0.0, 10.0, 0.0, 10.0, cells, cells);
+  for (Eigen::Vector3d& v : textured.mesh.vertices) v += Eigen::Vector3d(500000.0, 6000000.0, -40.0);
+  textured.pages.emplace_back(64, 64, CV_32FC3);
+  for (int row = 0; row < 64; ++row) {
+    for (int col = 0; col < 64; ++col) textured.pages[0].at<cv::Vec3f>(row, col) = cv::Vec3f(float(col) / 63.0f, float(row) / 63.0f, 0.5f);
+  }
+  const std::size_t num_faces = textured.mesh.faces.size();
+  textured.face_page.assign(num_faces, 0);
+  textured.face_page.back() = -1;
+  textured.face_corner_texels.resize(num_faces);
+  for (std::size_t f = 0; f < num_faces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& v = textured.mesh.vertices[textured.mesh.faces[f][k]];
+      textured.face_corner_texels[f][k] = Eigen::Vector2f(float(1.0 + 6.2 * (v.x() - 500000.0)),
+                                                          float(1.0 + 6.2 * (v.y() - 6000000.0)));
+    }
+  }
+  return textured;
+}
+
+tinygltf::Model ReadGlb(const std::filesystem::path& path) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, path.string())) << error;
+  return model;
+}
+
+TEST(GltfExport, GlbHoldsTheMeshLocallyWithTheOriginInTheRootNode) {
+  testing::TempDir dir;
+  const TexturedMesh textured = GradientGrid(8);
+  WriteGltf(textured, dir.path() / "model.glb");
+  const tinygltf::Model model = ReadGlb(dir.path() / "model.glb");
+  ASSERT_EQ(model.nodes.size(), 1u);
+  ASSERT_EQ(model.nodes[0].translation.size(), 3u);
+  const Eigen::Vector3d origin(model.nodes[0].translation[0], model.nodes[0].translation[1], model.nodes[0].translation[2]);
+  EXPECT_NEAR(origin.x(), 500005.0, 1e-9);
+  EXPECT_NEAR(origin.y(), 6000005.0, 1e-9);
+  // One textured primitive and one for the untextured face; both unlit.
+  ASSERT_EQ(model.meshes.size(), 1u);
+  ASSERT_EQ(model.meshes[0].primitives.size(), 2u);
+  EXPECT_EQ(model.extensionsUsed, std::vector<std::string>{"KHR_materials_unlit"});
+  for (const tinygltf::Material& material : model.materials) EXPECT_EQ(material.extensions.count("KHR_materials_unlit"), 1u);
+  const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
+  EXPECT_EQ(model.materials[primitive.material].pbrMetallicRoughness.baseColorTexture.index, 0);
+  EXPECT_EQ(model.images[0].mimeType, "image/png");
+  EXPECT_EQ(model.images[0].width, 64);
+  EXPECT_EQ(model.accessors[primitive.indices].count, 3 * (textured.mesh.faces.size() - 1));
+  // Every vertex + the root translation is a mesh vertex (to float precision of the local coordinates).
+  const tinygltf::Accessor& positions = model.accessors[primitive.attributes.at("POSITION")];
+  const tinygltf::BufferView& view = model.bufferViews[positions.bufferView];
+  const auto* xyz = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + positions.byteOffset);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < positions.count; ++i) {
+    const Eigen::Vector3d world = origin + Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    double nearest = 1e9;
+    for (const Eigen::Vector3d& v : textured.mesh.vertices) nearest = std::min(nearest, (v - world).norm());
+    worst = std::max(worst, nearest);
+  }
+  EXPECT_LT(worst, 1e-5);
+}
+
+TEST(GltfExport, TheValidatorFindsNoErrorsOrWarnings) {
+  testing::TempDir dir;
+  // 8 x 8 cells: 16-bit indices; 260 x 260 cells: 68,121 vertices, 32-bit indices.
+  for (const int cells : {8, 260}) {
+    const TexturedMesh textured = GradientGrid(cells);
+    for (const char* name : {"model.glb", "model.gltf"}) {
+      const std::filesystem::path path = dir.path() / (std::to_string(cells) + name);
+      WriteGltf(textured, path);
+      const testing::GltfValidation validation = testing::ValidateGltf(path);
+      ASSERT_TRUE(validation.ran) << validation.output;
+      EXPECT_TRUE(validation.valid) << path << "\n" << validation.output;
+      EXPECT_NE(validation.output.find("errors=0 warnings=0"), std::string::npos) << validation.output;
+    }
+  }
+}
+
+TEST(TexturedMeshIo, PlyKeepsFacesAndCornerTexcoordsWithVUp) {
+  testing::TempDir dir;
+  const TexturedMesh textured = GradientGrid(4);
+  const auto written = WriteTexturedMesh(textured, dir.path() / "model.ply", ImageEncoding::kLinear16);
+  ASSERT_EQ(written.size(), 2u);
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "model_texture.png"));
+  const Mesh mesh = ReadMesh(dir.path() / "model.ply");
+  ASSERT_EQ(mesh.faces, textured.mesh.faces);
+  ASSERT_EQ(mesh.corner_texcoords.size(), mesh.faces.size());
+  const Eigen::Vector2f& texel = textured.face_corner_texels[0][1];
+  EXPECT_NEAR(mesh.corner_texcoords[0][1].x(), texel.x() / 64.0f, 1e-6);
+  EXPECT_NEAR(mesh.corner_texcoords[0][1].y(), 1.0f - texel.y() / 64.0f, 1e-6);
+  EXPECT_EQ(mesh.corner_texcoords.back()[0], Eigen::Vector2f::Zero());  // untextured
+  std::ifstream header(dir.path() / "model.ply");
+  std::string line;
+  bool names_texture = false;
+  while (std::getline(header, line) && line != "end_header") names_texture |= line == "comment TextureFile model_texture.png";
+  EXPECT_TRUE(names_texture);
+}
+
+TEST(TexturedMeshIo, ObjWritesMaterialsAndPagesAndRefusesUnknownFormats) {
+  testing::TempDir dir;
+  const TexturedMesh textured = GradientGrid(4);
+  const auto written = WriteTexturedMesh(textured, dir.path() / "model.obj");
+  ASSERT_EQ(written.size(), 3u);  // .obj, .mtl, one page
+  for (const auto& path : written) EXPECT_TRUE(std::filesystem::exists(path)) << path;
+  std::ifstream material(dir.path() / "model.mtl");
+  const std::string text((std::istreambuf_iterator<char>(material)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("map_Kd model_page_0.png"), std::string::npos);
+  const Mesh mesh = ReadMesh(dir.path() / "model.obj");
+  EXPECT_EQ(mesh.faces.size(), textured.mesh.faces.size());
+  EXPECT_THROW(WriteTexturedMesh(textured, dir.path() / "model.fbx"), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "model.fbx"));
+}
+
+}  // namespace
+}  // namespace lutex

@@ -1,0 +1,103 @@
+#include "texturing/view_selection.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "lib/geometry/mesh_primitives.h"
+
+namespace lutex {
+namespace {
+
+// A strip of 2 x 20 triangles: each face has 1 to 3 edge neighbours.
+Mesh Strip() {
+  return MakeHeightFieldMesh([](double, double) { return 0.0; }, 0.0, 20.0, 0.0, 1.0, 20, 1);
+}
+
+TEST(FaceAdjacency, StripFacesShareEdgesWithTheirNeighbours) {
+  const Mesh mesh = Strip();
+  const FaceAdjacency adjacency(mesh);
+  ASSERT_EQ(adjacency.NumFaces(), 40u);
+  std::size_t edges = 0;
+  for (std::uint32_t f = 0; f < 40; ++f) {
+    EXPECT_GE(adjacency.Degree(f), 1u);
+    EXPECT_LE(adjacency.Degree(f), 3u);
+    edges += adjacency.Degree(f);
+    for (const std::uint32_t* n = adjacency.begin(f); n != adjacency.end(f); ++n) {
+      int shared = 0;
+      for (std::uint32_t a : mesh.faces[f]) {
+        for (std::uint32_t b : mesh.faces[*n]) shared += a == b;
+      }
+      EXPECT_EQ(shared, 2);
+    }
+  }
+  // 20 diagonals inside the cells + 19 edges between cells, each counted from both sides.
+  EXPECT_EQ(edges, 2u * 39u);
+}
+
+// View 0 sees every face with quality 1; view 1 sees faces [first, last) with `quality`.
+FaceViewCandidates TwoViews(std::size_t num_faces, std::uint32_t first, std::uint32_t last, float quality) {
+  FaceViewCandidates candidates(num_faces, 4);
+  for (std::uint32_t f = 0; f < num_faces; ++f) {
+    candidates.Offer(f, {0, 1.0f});
+    if (f >= first && f < last) candidates.Offer(f, {1, quality});
+  }
+  return candidates;
+}
+
+TEST(ViewSelection, ASlightlyBetterViewOnOneFaceIsNotWorthTwoSeams) {
+  const Mesh mesh = Strip();
+  const FaceAdjacency adjacency(mesh);
+  const FaceViewCandidates candidates = TwoViews(40, 20, 21, 1.2f);  // ln 1.2 = 0.18 < 2 x 0.5
+  ViewSelectionOptions options;
+  const ViewSelection smooth = SelectViews(candidates, adjacency, options);
+  for (std::uint32_t view : smooth.view_of_face) EXPECT_EQ(view, 0u);
+  EXPECT_DOUBLE_EQ(smooth.smoothness_cost, 0.0);
+  options.smoothness = 0.0;  // no smoothness: every face takes its best view
+  const ViewSelection best = SelectViews(candidates, adjacency, options);
+  EXPECT_EQ(best.view_of_face[20], 1u);
+  EXPECT_EQ(best.view_of_face[19], 0u);
+}
+
+TEST(ViewSelection, AMuchBetterViewTakesItsRegionWithOneSeam) {
+  const Mesh mesh = Strip();
+  const FaceAdjacency adjacency(mesh);
+  // View 1 is 100 x better on faces 10..29 (data cost 4 for view 0 there).
+  const FaceViewCandidates candidates = TwoViews(40, 10, 30, 100.0f);
+  const ViewSelection selection = SelectViews(candidates, adjacency, {});
+  for (std::uint32_t f = 0; f < 40; ++f) EXPECT_EQ(selection.view_of_face[f], (f >= 10 && f < 30) ? 1u : 0u) << f;
+  EXPECT_DOUBLE_EQ(selection.smoothness_cost, 2 * 0.5);  // two seam edges, at faces 9|10 and 29|30
+  EXPECT_LE(selection.data_cost + selection.smoothness_cost,
+            selection.best_view_data_cost + selection.best_view_smoothness_cost + 1e-9);
+}
+
+TEST(ViewSelection, IsolatedNoisyLabelsAreSmoothedAway) {
+  const Mesh mesh = Strip();
+  const FaceAdjacency adjacency(mesh);
+  FaceViewCandidates candidates(40, 4);
+  // Views 0 and 1 are nearly equal everywhere (within 10 %); which is better is noise.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> quality(1.0f, 1.1f);
+  for (std::uint32_t f = 0; f < 40; ++f) {
+    candidates.Offer(f, {0, quality(random)});
+    candidates.Offer(f, {1, quality(random)});
+  }
+  const ViewSelection selection = SelectViews(candidates, adjacency, {});
+  EXPECT_EQ(selection.smoothness_cost, 0.0);  // one view for the whole strip
+  EXPECT_LT(selection.data_cost + selection.smoothness_cost,
+            selection.best_view_data_cost + selection.best_view_smoothness_cost);
+  EXPECT_GT(selection.best_view_smoothness_cost, 5.0);  // the best view per face alone makes many seams
+}
+
+TEST(ViewSelection, FacesNoViewSeesStayUnlabelled) {
+  const Mesh mesh = Strip();
+  const FaceAdjacency adjacency(mesh);
+  FaceViewCandidates candidates(40, 4);
+  for (std::uint32_t f = 0; f < 20; ++f) candidates.Offer(f, {3, 1.0f});
+  const ViewSelection selection = SelectViews(candidates, adjacency, {});
+  EXPECT_EQ(selection.view_of_face[5], 3u);
+  EXPECT_EQ(selection.view_of_face[25], kNoView);
+}
+
+}  // namespace
+}  // namespace lutex

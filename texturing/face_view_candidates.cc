@@ -1,0 +1,160 @@
+#include "texturing/face_view_candidates.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+#include "lib/util/parallel_for.h"
+#include "lib/util/progress.h"
+
+namespace lutex {
+
+namespace {
+
+// Pixel statistics of one view, per face, reset after each view (only touched entries).
+struct FaceHits {
+  std::vector<std::uint32_t> hits;
+  std::vector<float> confidence_sum;
+  std::vector<std::uint32_t> touched;
+
+  void Resize(std::size_t num_faces) {
+    if (hits.size() == num_faces) return;
+    hits.assign(num_faces, 0);
+    confidence_sum.assign(num_faces, 0.0f);
+  }
+  void Clear() {
+    for (std::uint32_t face : touched) {
+      hits[face] = 0;
+      confidence_sum[face] = 0.0f;
+    }
+    touched.clear();
+  }
+};
+
+bool Better(const FaceViewCandidate& a, const FaceViewCandidate& b) {
+  return a.quality > b.quality || (a.quality == b.quality && a.view < b.view);
+}
+
+}  // namespace
+
+void FaceViewCandidatesOptions::Check() const {
+  if (max_views_per_face < 1 || max_views_per_face > 255) {
+    throw std::invalid_argument("max views per face must be in [1, 255], got " + std::to_string(max_views_per_face));
+  }
+  if (!(min_cos_angle >= 0.0 && min_cos_angle < 1.0)) {
+    throw std::invalid_argument("the minimum cosine of the viewing angle must be in [0, 1)");
+  }
+}
+
+FaceViewCandidates::FaceViewCandidates(std::size_t num_faces, int max_views_per_face)
+    : stride_(static_cast<std::size_t>(max_views_per_face)), slots_(num_faces * stride_), counts_(num_faces, 0) {}
+
+void FaceViewCandidates::Offer(std::uint32_t face, const FaceViewCandidate& candidate) {
+  FaceViewCandidate* first = slots_.data() + face * stride_;
+  std::size_t count = counts_[face];
+  if (count == stride_ && !Better(candidate, first[count - 1])) return;
+  if (count < stride_) ++count;
+  std::size_t i = count - 1;
+  while (i > 0 && Better(candidate, first[i - 1])) {
+    first[i] = first[i - 1];
+    --i;
+  }
+  first[i] = candidate;
+  counts_[face] = static_cast<std::uint8_t>(count);
+}
+
+FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency& adjacency,
+                                          const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
+                                          const ViewImageSource& source, const FaceViewCandidatesOptions& options) {
+  options.Check();
+  const std::size_t num_faces = mesh.faces.size();
+  FaceViewCandidates candidates(num_faces, options.max_views_per_face);
+  constexpr std::size_t kNumLocks = 1024;
+  std::vector<std::mutex> locks(kNumLocks);
+  ProgressReporter progress("texture: visibility", views.size(), "views");
+  ParallelFor(views.size(), options.num_threads, [&](std::size_t view_index) {
+    const TextureView& view = views[view_index];
+    const GeometryMaps maps = raycaster.Render(view);
+    const cv::Mat confidence = source.confidence ? source.confidence(view_index) : cv::Mat();
+    if (!confidence.empty() && (confidence.size() != maps.depth.size() || confidence.type() != CV_32FC3)) {
+      throw std::runtime_error(view.name + ": the confidence map does not match the camera's size");
+    }
+    thread_local FaceHits face_hits;
+    face_hits.Resize(num_faces);
+    face_hits.Clear();
+    for (int row = 0; row < maps.face_id.rows; ++row) {
+      const int* face_row = maps.face_id.ptr<int>(row);
+      const cv::Vec3f* confidence_row = confidence.empty() ? nullptr : confidence.ptr<cv::Vec3f>(row);
+      for (int col = 0; col < maps.face_id.cols; ++col) {
+        const int face = face_row[col];
+        if (face < 0) continue;
+        if (face_hits.hits[face]++ == 0) face_hits.touched.push_back(static_cast<std::uint32_t>(face));
+        face_hits.confidence_sum[face] +=
+            confidence_row ? (confidence_row[col][0] + confidence_row[col][1] + confidence_row[col][2]) / 3.0f : 1.0f;
+      }
+    }
+    // Faces between pixel centres, next to seen faces: the centroid's pixel must see the centroid.
+    const std::size_t num_hit = face_hits.touched.size();
+    std::vector<std::uint32_t> subpixel;
+    for (std::size_t i = 0; i < num_hit; ++i) {
+      const std::uint32_t face = face_hits.touched[i];
+      for (const std::uint32_t* n = adjacency.begin(face); n != adjacency.end(face); ++n) {
+        if (face_hits.hits[*n] == 0) subpixel.push_back(*n);
+      }
+    }
+    std::sort(subpixel.begin(), subpixel.end());
+    subpixel.erase(std::unique(subpixel.begin(), subpixel.end()), subpixel.end());
+
+    const Eigen::Vector3d centre_in_world = view.cam_from_world.TargetOriginInSource();
+    const auto offer = [&](std::uint32_t face, bool seen_by_pixels) {
+      const Mesh::Face& corners = mesh.faces[face];
+      const Eigen::Vector3d& a = mesh.vertices[corners[0]];
+      const Eigen::Vector3d& b = mesh.vertices[corners[1]];
+      const Eigen::Vector3d& c = mesh.vertices[corners[2]];
+      const Eigen::Vector3d centroid = (a + b + c) / 3.0;
+      const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+      const double cos_angle = std::abs(normal.dot((centre_in_world - centroid).normalized()));
+      if (!(cos_angle >= options.min_cos_angle)) return;
+      std::array<Eigen::Vector2d, 3> pixels;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d point_in_cam = view.cam_from_world * mesh.vertices[corners[k]];
+        if (point_in_cam.z() <= 0.0) return;
+        pixels[k] = view.camera.ImgFromCam(point_in_cam);
+      }
+      const double area_in_pixels =
+          0.5 * std::abs((pixels[1] - pixels[0]).x() * (pixels[2] - pixels[0]).y() -
+                         (pixels[1] - pixels[0]).y() * (pixels[2] - pixels[0]).x());
+      if (!std::isfinite(area_in_pixels)) return;
+      double visible_fraction = 1.0;
+      double mean_confidence = 1.0;
+      if (seen_by_pixels) {
+        visible_fraction = std::min(1.0, double(face_hits.hits[face]) / std::max(area_in_pixels, 1.0));
+        mean_confidence = double(face_hits.confidence_sum[face]) / double(face_hits.hits[face]);
+      } else {
+        const Eigen::Vector3d centroid_in_cam = view.cam_from_world * centroid;
+        const Eigen::Vector2d pixel = view.camera.ImgFromCam(centroid_in_cam);
+        const int col = static_cast<int>(std::floor(pixel.x())), row = static_cast<int>(std::floor(pixel.y()));
+        if (!(col >= 0 && row >= 0 && col < maps.depth.cols && row < maps.depth.rows)) return;
+        const float depth = maps.depth.at<float>(row, col);
+        if (!(std::abs(depth - centroid_in_cam.z()) <= 0.01 * centroid_in_cam.z())) return;
+        if (!confidence.empty()) {
+          const cv::Vec3f& value = confidence.at<cv::Vec3f>(row, col);
+          mean_confidence = (value[0] + value[1] + value[2]) / 3.0;
+        }
+      }
+      const double quality = area_in_pixels * visible_fraction * mean_confidence;
+      if (!(quality > 0.0)) return;
+      std::lock_guard<std::mutex> lock(locks[face % kNumLocks]);
+      candidates.Offer(face, {static_cast<std::uint32_t>(view_index), static_cast<float>(quality)});
+    };
+    for (std::size_t i = 0; i < num_hit; ++i) offer(face_hits.touched[i], true);
+    for (std::uint32_t face : subpixel) offer(face, false);
+    progress.Advance();
+  });
+  progress.Finish();
+  return candidates;
+}
+
+}  // namespace lutex

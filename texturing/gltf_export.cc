@@ -1,0 +1,228 @@
+#include "texturing/gltf_export.h"
+
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include <Eigen/Geometry>
+#include <tiny_gltf.h>
+
+#include "lib/util/file_streams.h"
+#include "texturing/atlas_page_encoding.h"
+
+namespace lutex {
+
+namespace {
+
+constexpr int kArrayBuffer = 34962;         // GL_ARRAY_BUFFER
+constexpr int kElementArrayBuffer = 34963;  // GL_ELEMENT_ARRAY_BUFFER
+constexpr int kFloat = 5126, kUnsignedShort = 5123, kUnsignedInt = 5125;
+constexpr int kLinear = 9729, kLinearMipmapLinear = 9987, kClampToEdge = 33071;
+
+// Appends raw bytes to buffer 0 as a new buffer view (4-byte aligned); returns its index.
+int AddBufferView(tinygltf::Model& model, const void* data, std::size_t size, int target) {
+  std::vector<unsigned char>& buffer = model.buffers[0].data;
+  while (buffer.size() % 4 != 0) buffer.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buffer.size();
+  view.byteLength = size;
+  if (target != 0) view.target = target;
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  buffer.insert(buffer.end(), bytes, bytes + size);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size() - 1);
+}
+
+int AddAccessor(tinygltf::Model& model, int buffer_view, int component_type, int type, std::size_t count) {
+  tinygltf::Accessor accessor;
+  accessor.bufferView = buffer_view;
+  accessor.componentType = component_type;
+  accessor.type = type;
+  accessor.count = count;
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
+int AddMaterial(tinygltf::Model& model, int texture, const std::string& name) {
+  tinygltf::Material material;
+  material.name = name;
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 1.0;
+  if (texture >= 0) {
+    material.pbrMetallicRoughness.baseColorTexture.index = texture;
+  } else {
+    material.pbrMetallicRoughness.baseColorFactor = {0.5, 0.5, 0.5, 1.0};
+  }
+  material.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object());
+  model.materials.push_back(material);
+  return static_cast<int>(model.materials.size() - 1);
+}
+
+// Unit vertex normals: the mesh's own, else area-weighted face normals.
+std::vector<Eigen::Vector3f> VertexNormals(const Mesh& mesh) {
+  std::vector<Eigen::Vector3d> sums(mesh.vertices.size(), Eigen::Vector3d::Zero());
+  if (mesh.vertex_normals.size() == mesh.vertices.size()) {
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) sums[v] = mesh.vertex_normals[v].cast<double>();
+  } else {
+    for (const Mesh::Face& face : mesh.faces) {
+      const Eigen::Vector3d n =
+          (mesh.vertices[face[1]] - mesh.vertices[face[0]]).cross(mesh.vertices[face[2]] - mesh.vertices[face[0]]);
+      for (std::uint32_t v : face) sums[v] += n;
+    }
+  }
+  std::vector<Eigen::Vector3f> normals(sums.size());
+  for (std::size_t v = 0; v < sums.size(); ++v) {
+    const double length = sums[v].norm();
+    normals[v] = length > 0.0 && std::isfinite(length) ? Eigen::Vector3f((sums[v] / length).cast<float>())
+                                                        : Eigen::Vector3f::UnitZ();
+  }
+  return normals;
+}
+
+// One primitive: the faces of one page (page -1: the untextured faces).
+void AddPrimitive(tinygltf::Model& model, tinygltf::Mesh& gltf_mesh, const TexturedMesh& textured, int page,
+                  const std::vector<Eigen::Vector3f>& normals, const Eigen::Vector3d& origin, int material) {
+  const Mesh& mesh = textured.mesh;
+  const bool with_texcoords = page >= 0;
+  const float page_width = with_texcoords ? static_cast<float>(textured.pages[page].cols) : 1.0f;
+  const float page_height = with_texcoords ? static_cast<float>(textured.pages[page].rows) : 1.0f;
+  // A vertex of the primitive per (mesh vertex, texture coordinate).
+  std::map<std::tuple<std::uint32_t, float, float>, std::uint32_t> index_of;
+  std::vector<float> positions, vertex_normals, texcoords;
+  std::vector<std::uint32_t> indices;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (textured.face_page[f] != page) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.faces[f][k];
+      float u = 0.0f, w = 0.0f;
+      if (with_texcoords) {
+        u = textured.face_corner_texels[f][k].x() / page_width;
+        w = textured.face_corner_texels[f][k].y() / page_height;
+      }
+      const auto [it, inserted] = index_of.emplace(std::make_tuple(v, u, w), static_cast<std::uint32_t>(index_of.size()));
+      if (inserted) {
+        const Eigen::Vector3d local = mesh.vertices[v] - origin;
+        for (int c = 0; c < 3; ++c) positions.push_back(static_cast<float>(local[c]));
+        for (int c = 0; c < 3; ++c) vertex_normals.push_back(normals[v][c]);
+        texcoords.push_back(u);
+        texcoords.push_back(w);
+      }
+      indices.push_back(it->second);
+    }
+  }
+  if (indices.empty()) return;
+  const std::size_t num_vertices = positions.size() / 3;
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.material = material;
+  const int position_accessor = AddAccessor(
+      model, AddBufferView(model, positions.data(), positions.size() * sizeof(float), kArrayBuffer), kFloat,
+      TINYGLTF_TYPE_VEC3, num_vertices);
+  std::vector<double> low(3, std::numeric_limits<double>::infinity()), high(3, -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    low[i % 3] = std::min<double>(low[i % 3], positions[i]);
+    high[i % 3] = std::max<double>(high[i % 3], positions[i]);
+  }
+  model.accessors[position_accessor].minValues = low;
+  model.accessors[position_accessor].maxValues = high;
+  primitive.attributes["POSITION"] = position_accessor;
+  primitive.attributes["NORMAL"] = AddAccessor(
+      model, AddBufferView(model, vertex_normals.data(), vertex_normals.size() * sizeof(float), kArrayBuffer), kFloat,
+      TINYGLTF_TYPE_VEC3, num_vertices);
+  if (with_texcoords) {
+    primitive.attributes["TEXCOORD_0"] = AddAccessor(
+        model, AddBufferView(model, texcoords.data(), texcoords.size() * sizeof(float), kArrayBuffer), kFloat,
+        TINYGLTF_TYPE_VEC2, num_vertices);
+  }
+  if (num_vertices <= 65535) {
+    const std::vector<std::uint16_t> short_indices(indices.begin(), indices.end());
+    primitive.indices = AddAccessor(
+        model, AddBufferView(model, short_indices.data(), short_indices.size() * 2, kElementArrayBuffer),
+        kUnsignedShort, TINYGLTF_TYPE_SCALAR, indices.size());
+  } else {
+    primitive.indices =
+        AddAccessor(model, AddBufferView(model, indices.data(), indices.size() * 4, kElementArrayBuffer), kUnsignedInt,
+                    TINYGLTF_TYPE_SCALAR, indices.size());
+  }
+  gltf_mesh.primitives.push_back(primitive);
+}
+
+tinygltf::Model BuildModel(const TexturedMesh& textured) {
+  const Mesh& mesh = textured.mesh;
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "lutex";
+  model.extensionsUsed.push_back("KHR_materials_unlit");
+  model.buffers.emplace_back();
+  tinygltf::Sampler sampler;
+  sampler.magFilter = kLinear;
+  sampler.minFilter = kLinearMipmapLinear;
+  sampler.wrapS = kClampToEdge;
+  sampler.wrapT = kClampToEdge;
+  model.samplers.push_back(sampler);
+
+  const Eigen::Vector3d origin = 0.5 * (mesh.BoundsMin() + mesh.BoundsMax());
+  const std::vector<Eigen::Vector3f> normals = VertexNormals(mesh);
+  tinygltf::Mesh gltf_mesh;
+  gltf_mesh.name = "albedo";
+  for (std::size_t p = 0; p < textured.pages.size(); ++p) {
+    const std::vector<unsigned char> png = EncodeAtlasPage(textured.pages[p]);
+    tinygltf::Image image;
+    image.name = "albedo_page_" + std::to_string(p);
+    image.mimeType = "image/png";
+    image.bufferView = AddBufferView(model, png.data(), png.size(), 0);
+    model.images.push_back(image);
+    tinygltf::Texture texture;
+    texture.source = static_cast<int>(model.images.size() - 1);
+    texture.sampler = 0;
+    model.textures.push_back(texture);
+    const int material = AddMaterial(model, static_cast<int>(model.textures.size() - 1), image.name);
+    AddPrimitive(model, gltf_mesh, textured, static_cast<int>(p), normals, origin, material);
+  }
+  if (textured.NumTexturedFaces() < mesh.faces.size()) {
+    AddPrimitive(model, gltf_mesh, textured, -1, normals, origin, AddMaterial(model, -1, "untextured"));
+  }
+  model.meshes.push_back(gltf_mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = "lutex model";
+  node.translation = {origin.x(), origin.y(), origin.z()};
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  return model;
+}
+
+}  // namespace
+
+void WriteGltf(const TexturedMesh& textured, std::ostream& stream, bool binary) {
+  if (textured.face_page.size() != textured.mesh.faces.size() ||
+      textured.face_corner_texels.size() != textured.mesh.faces.size()) {
+    throw std::invalid_argument("glTF export: the texture does not match the mesh's faces");
+  }
+  tinygltf::Model model = BuildModel(textured);
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/!binary, binary) || !stream) {
+    throw std::runtime_error("glTF export: writing failed");
+  }
+}
+
+void WriteGltf(const TexturedMesh& textured, const std::filesystem::path& path) {
+  const std::string extension = path.extension().string();
+  if (extension != ".glb" && extension != ".gltf") {
+    throw std::invalid_argument(path.string() + ": a glTF file must end in .glb or .gltf");
+  }
+  WriteFileAtomically(path, std::ios::binary, [&](std::ostream& stream) {
+    try {
+      WriteGltf(textured, stream, extension == ".glb");
+    } catch (const std::exception& error) {
+      throw std::runtime_error(path.string() + ": " + error.what());
+    }
+  });
+}
+
+}  // namespace lutex

@@ -1,0 +1,32 @@
+#pragma once
+
+// glTF 2.0 export of a textured mesh, with tinygltf: what map viewers (Cesium, three.js, Blender, QGIS 3D)
+// load.
+//
+// - One primitive per atlas page (positions, normals, TEXCOORD_0, indices of 16 or 32 bits as the
+//   primitive needs) with its own material; faces no view saw go to one primitive without texture, in a
+//   neutral grey.
+// - Materials are unlit (KHR_materials_unlit): the texture is albedo, lighting it again in a viewer
+//   would darken it twice. Base colour textures are 8-bit sRGB PNG, as the glTF spec requires.
+// - Vertex positions are stored relative to the centre of the mesh bounds, in float; the root node's
+//   translation (double precision in JSON) puts them back, so georeferenced models keep their precision.
+// - Vertices are split where one mesh vertex has different texture coordinates in different charts.
+//
+// .glb: one binary file, images embedded through buffer views. .gltf: JSON with buffers and images
+// embedded as base64 data URIs (one self-contained file, about a third larger).
+
+#include <filesystem>
+#include <ostream>
+
+#include "texturing/textured_mesh.h"
+
+namespace lutex {
+
+// Throws std::runtime_error naming `path` when it cannot be written; writes a temporary file and renames
+// it, so a failure leaves no partial output.
+void WriteGltf(const TexturedMesh& textured, const std::filesystem::path& path);
+
+// The same into a stream (binary GLB or JSON).
+void WriteGltf(const TexturedMesh& textured, std::ostream& stream, bool binary);
+
+}  // namespace lutex

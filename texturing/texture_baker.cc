@@ -1,0 +1,107 @@
+#include "texturing/texture_baker.h"
+
+#include <chrono>
+#include <limits>
+#include <stdexcept>
+
+#include "lib/raycast/raycast_scene.h"
+#include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
+#include "texturing/atlas_packing.h"
+#include "texturing/face_adjacency.h"
+#include "texturing/texel_layout.h"
+#include "texturing/texture_fill.h"
+
+namespace lutex {
+
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+void TextureBakingOptions::Check() const {
+  visibility.Check();
+  selection.Check();
+  charts.Check();
+  if (!(gutter >= 0.0 && gutter <= charts.padding + 0.5)) {
+    throw std::invalid_argument("the gutter must be in [0, padding + 0.5] texels");
+  }
+  if (fusion.memory_limit_bytes == 0) throw std::invalid_argument("the memory limit must be positive");
+}
+
+TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>& views, const ViewImageSource& source,
+                                const TextureBakingOptions& options) {
+  options.Check();
+  if (views.empty()) throw std::invalid_argument("texture: no views to texture from");
+  if (!source.linear_rgb) throw std::invalid_argument("texture: no image source");
+  if (views.size() >= kNoView) throw std::invalid_argument("texture: too many views");
+  mesh.Check("texture: mesh");
+  TextureBakingResult result;
+  TextureBakingSummary& summary = result.summary;
+  summary.num_views = views.size();
+  summary.num_faces = mesh.faces.size();
+
+  auto start = std::chrono::steady_clock::now();
+  const RaycastScene scene(mesh);
+  const ViewRaycaster raycaster(scene);
+  const FaceAdjacency adjacency(mesh);
+  FaceViewCandidatesOptions visibility = options.visibility;
+  visibility.num_threads = options.num_threads;
+  const FaceViewCandidates candidates = FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility);
+  summary.seconds_visibility = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  ViewSelection selection = SelectViews(candidates, adjacency, options.selection);
+  summary.seconds_selection = SecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  const std::vector<TextureChart> charts =
+      BuildTextureCharts(mesh, adjacency, views, selection.view_of_face, options.charts);
+  std::vector<cv::Size> rectangles;
+  rectangles.reserve(charts.size());
+  for (const TextureChart& chart : charts) rectangles.emplace_back(chart.width, chart.height);
+  const AtlasLayout atlas = PackAtlas(rectangles, options.charts.max_size);
+  const TexelLayout layout = RasterizeTexels(charts, atlas, mesh.faces.size(), options.gutter, options.num_threads);
+  summary.seconds_layout = SecondsSince(start);
+  LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages, "
+            << layout.texels.size() << " surface texels";
+
+  start = std::chrono::steady_clock::now();
+  TexturedMesh& textured = result.textured;
+  textured.mesh = mesh;
+  for (const cv::Size& size : atlas.page_sizes) {
+    textured.pages.emplace_back(size, CV_32FC3, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
+    summary.page_texels += static_cast<std::size_t>(size.area());
+  }
+  TexelFusionOptions fusion = options.fusion;
+  fusion.num_threads = options.num_threads;
+  summary.fusion = FuseTexels(mesh, views, raycaster, source, candidates, selection.view_of_face, layout, fusion,
+                              textured.pages);
+  ParallelFor(textured.pages.size(), options.num_threads, [&](std::size_t p) { FillUnknownTexels(textured.pages[p]); });
+  summary.seconds_fusion = SecondsSince(start);
+
+  textured.face_page.assign(mesh.faces.size(), -1);
+  textured.face_corner_texels.assign(mesh.faces.size(), {});
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    const Eigen::Vector2f offset(static_cast<float>(atlas.placements[c].x), static_cast<float>(atlas.placements[c].y));
+    for (std::size_t i = 0; i < charts[c].faces.size(); ++i) {
+      const std::uint32_t face = charts[c].faces[i];
+      textured.face_page[face] = atlas.placements[c].page;
+      for (int k = 0; k < 3; ++k) textured.face_corner_texels[face][k] = charts[c].corner_texels[3 * i + k] + offset;
+    }
+  }
+  summary.num_charts = charts.size();
+  summary.num_pages = atlas.page_sizes.size();
+  summary.num_texels = layout.texels.size();
+  summary.num_textured_faces = textured.NumTexturedFaces();
+  summary.seams = MeasureSeamVisibility(textured, adjacency);
+  result.view_of_face = std::move(selection.view_of_face);
+  selection.view_of_face.clear();
+  summary.selection = selection;
+  return result;
+}
+
+}  // namespace lutex

@@ -1,0 +1,72 @@
+#pragma once
+
+// Bakes one albedo texture atlas for a mesh from many posed views (texturing/ in DESIGN.md):
+//
+//   1. visibility and quality of every (face, view) pair        face_view_candidates.h   (one pass over views)
+//   2. one view per face: MRF, loopy belief propagation          view_selection.h
+//   3. charts of faces with the same view, projected into it     texture_charts.h
+//   4. charts packed into atlas pages                            atlas_packing.h
+//   5. texels tied to surface points, borders included           texel_layout.h
+//   6. texel colours fused from all views that see them          texel_fusion.h           (passes over views)
+//   7. padding and unseen texels filled by pull-push             texture_fill.h
+//   8. the colour step across chart borders, for the summary     seam_visibility.h
+//
+// Images are loaded on demand through the ViewImageSource, at most one per thread, so memory depends on
+// the mesh and the atlas, not on the number of views.
+
+#include <vector>
+
+#include "lib/geometry/mesh.h"
+#include "texturing/face_view_candidates.h"
+#include "texturing/seam_visibility.h"
+#include "texturing/texel_fusion.h"
+#include "texturing/texture_charts.h"
+#include "texturing/texture_views.h"
+#include "texturing/textured_mesh.h"
+#include "texturing/view_selection.h"
+
+namespace lutex {
+
+struct TextureBakingOptions {
+  FaceViewCandidatesOptions visibility;
+  ViewSelectionOptions selection;
+  TextureChartOptions charts;
+  TexelFusionOptions fusion;
+  // Border texels (outside every triangle of a chart) within this distance of a triangle show its
+  // nearest point; further padding is filled by pull-push.
+  double gutter = 2.0;
+  // Threads for every stage; <= 0 means all cores. Results do not depend on it.
+  int num_threads = 0;
+  void Check() const;
+};
+
+struct TextureBakingSummary {
+  std::size_t num_views = 0;
+  std::size_t num_faces = 0;
+  std::size_t num_textured_faces = 0;
+  std::size_t num_charts = 0;
+  std::size_t num_pages = 0;
+  std::size_t num_texels = 0;   // texels tied to the surface
+  std::size_t page_texels = 0;  // all texels of all pages
+  ViewSelection selection;      // without the per-face labels
+  TexelFusionSummary fusion;
+  SeamVisibility seams;
+  double seconds_visibility = 0.0;
+  double seconds_selection = 0.0;
+  double seconds_layout = 0.0;
+  double seconds_fusion = 0.0;
+};
+
+struct TextureBakingResult {
+  TexturedMesh textured;
+  // The view each face was textured from (the MRF's choice; kNoView for faces no view sees).
+  std::vector<std::uint32_t> view_of_face;
+  TextureBakingSummary summary;
+};
+
+// Throws std::invalid_argument on bad options or an empty mesh or view list, and what the image source
+// throws.
+TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>& views, const ViewImageSource& source,
+                                const TextureBakingOptions& options);
+
+}  // namespace lutex

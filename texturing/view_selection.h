@@ -1,0 +1,48 @@
+#pragma once
+
+// Which view textures each face: a Markov random field over the faces, solved by min-sum loopy belief
+// propagation.
+//
+//   E(labels) = sum_f D_f(label_f) + smoothness * #{edges (f, g) : label_f != label_g}    (Potts)
+//   D_f(v)    = min(max_data_cost, ln(quality of f's best view / quality of v))
+//
+// The data term is 0 for a face's best view and grows with the log of how much worse another view is;
+// the Potts term prefers large charts of one view, whose seams are fewer and fall where views agree.
+// Labels are restricted to each face's candidates (FaceViewCandidates). Messages are updated face by
+// face in a forward then a backward sweep (deterministic, no dependence on threads), until no label
+// changes or `max_iterations` sweeps.
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "texturing/face_adjacency.h"
+#include "texturing/face_view_candidates.h"
+
+namespace lutex {
+
+constexpr std::uint32_t kNoView = std::numeric_limits<std::uint32_t>::max();
+
+struct ViewSelectionOptions {
+  // Cost of one pair of adjacent faces textured from different views, in units of the data term (a
+  // view e^smoothness times worse than the best is worth it to avoid one seam edge).
+  double smoothness = 0.5;
+  double max_data_cost = 4.0;
+  int max_iterations = 20;
+  void Check() const;
+};
+
+struct ViewSelection {
+  std::vector<std::uint32_t> view_of_face;  // kNoView for faces no view sees
+  double data_cost = 0.0;
+  double smoothness_cost = 0.0;
+  // The same energy with every face on its best view (no smoothness): what the MRF trades against.
+  double best_view_data_cost = 0.0;
+  double best_view_smoothness_cost = 0.0;
+  int iterations = 0;
+};
+
+ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjacency& adjacency,
+                          const ViewSelectionOptions& options);
+
+}  // namespace lutex
