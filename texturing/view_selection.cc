@@ -114,6 +114,9 @@ void ViewSelectionOptions::Check() const {
   if (!(smoothness >= 0.0)) throw std::invalid_argument("the view smoothness must be >= 0");
   if (!(max_data_cost > 0.0)) throw std::invalid_argument("the maximum data cost must be > 0");
   if (max_iterations < 0) throw std::invalid_argument("the number of iterations must be >= 0");
+  if (!(converged_fraction >= 0.0 && converged_fraction < 1.0)) {
+    throw std::invalid_argument("the converged fraction must be in [0, 1)");
+  }
 }
 
 ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjacency& adjacency,
@@ -131,14 +134,15 @@ ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjace
     for (std::uint32_t f = 0; f < num_faces; ++f) propagation.SendMessages(f, belief);
     for (std::uint32_t f = num_faces; f-- > 0;) propagation.SendMessages(f, belief);
     selection.iterations = iteration + 1;
-    bool changed = false;
+    std::size_t changed = 0;
     for (std::uint32_t f = 0; f < num_faces; ++f) {
       if (candidates.NumViews(f) == 0) continue;
       const std::size_t new_label = propagation.Label(f, belief);
-      changed = changed || new_label != label[f];
+      changed += new_label != label[f];
       label[f] = new_label;
     }
-    if (!changed && iteration > 0) break;
+    // Converged when (almost) no label changes; a few faces may keep flipping between equal choices.
+    if (iteration > 0 && double(changed) <= options.converged_fraction * num_faces) break;
   }
   selection.view_of_face.assign(num_faces, kNoView);
   std::vector<std::uint32_t> best_view(num_faces, kNoView);

@@ -9,8 +9,8 @@
 // The data term is 0 for a face's best view and grows with the log of how much worse another view is;
 // the Potts term prefers large charts of one view, whose seams are fewer and fall where views agree.
 // Labels are restricted to each face's candidates (FaceViewCandidates). Messages are updated face by
-// face in a forward then a backward sweep (deterministic, no dependence on threads), until no label
-// changes or `max_iterations` sweeps.
+// face in a forward then a backward sweep (deterministic, no dependence on threads), until at most
+// `converged_fraction` of the labels change in a sweep, or `max_iterations` sweeps.
 
 #include <cstdint>
 #include <limits>
@@ -29,6 +29,8 @@ struct ViewSelectionOptions {
   double smoothness = 0.5;
   double max_data_cost = 4.0;
   int max_iterations = 20;
+  // Sweeps stop when at most this fraction of the faces changed label in the last one.
+  double converged_fraction = 0.001;
   void Check() const;
 };
 

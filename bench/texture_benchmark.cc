@@ -1,0 +1,134 @@
+// Texturing a synthetic dive: a lawnmower survey of N images (default 200, 640 x 480, 8-bit sRGB PNG)
+// over a 20 x 12.5 m seafloor of 1.25 M faces (simulated by lutex simulate), then the same area with 2N
+// images (twice as many survey lines). For each: `lutex texture` time and peak memory (resident set,
+// measured in a child process that does nothing else), against plain decoding of the same images in the
+// same run (the least any texturer pays). Not a test.
+//
+//   texture_benchmark [--images 200] [--num-threads 0]
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "bench/bench_options.h"
+#include "colmap_integration/simulate_workspace.h"
+#include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/texture_workspace.h"
+#include "lib/image/image_io.h"
+#include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Measurement {
+  double seconds = 0.0;
+  double peak_mib = 0.0;
+  double decode_seconds = 0.0;
+  double texels = 0.0;
+  double faces = 0.0;
+};
+
+// Runs `work` in a child process and returns what it wrote to the pipe (so the peak resident set of
+// the measurement is its own, not the simulation's).
+Measurement InChild(const std::function<Measurement()>& work) {
+  int pipe_ends[2];
+  if (pipe(pipe_ends) != 0) throw std::runtime_error("pipe failed");
+  const pid_t child = fork();
+  if (child == 0) {
+    close(pipe_ends[0]);
+    Measurement measurement = work();
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    measurement.peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
+    if (write(pipe_ends[1], &measurement, sizeof(measurement)) != sizeof(measurement)) _exit(1);
+    _exit(0);
+  }
+  close(pipe_ends[1]);
+  Measurement measurement;
+  const bool complete = read(pipe_ends[0], &measurement, sizeof(measurement)) == sizeof(measurement);
+  close(pipe_ends[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  if (!complete || status != 0) throw std::runtime_error("the measurement failed");
+  return measurement;
+}
+
+void SimulateDive(const fs::path& root, int lines, int images_per_line, int num_threads) {
+  fs::create_directories(root);
+  std::ofstream(root / "scene.json")
+      << R"({"mesh": {"synthetic": {"size": [20, 12.5], "cell_size": 0.02, "relief": 0.2}},
+         "camera": {"model": "PINHOLE", "width": 640, "height": 480, "params": [400, 400, 320, 240]},
+         "survey": {"pattern": "lawnmower", "x": [-8.5, 8.5], "y": [-5, 5], "lines": )"
+      << lines << R"(, "images_per_line": )" << images_per_line << R"(, "altitude": 2},
+         "lights": [{"position": [-0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"},
+                    {"position": [0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"}],
+         "water": {"absorption": [0.35, 0.05, 0.02], "scattering": [0.04, 0.045, 0.05], "g": 0.88},
+         "sensor": {"exposure": 4, "shot_noise": 0.01, "read_noise": 0.002}})";
+  lutex::SimulateOptions simulate;
+  simulate.scene = root / "scene.json";
+  simulate.output = root / "W";
+  simulate.num_threads = num_threads;
+  lutex::SimulateWorkspace(simulate);
+}
+
+Measurement Texture(const fs::path& workspace, int num_threads) {
+  using namespace lutex;
+  Measurement measurement;
+  const SparseModel model = ReadSparseModel(workspace / "sparse" / "0");
+  std::vector<std::string> names;
+  for (const auto& [id, image] : model.images) names.push_back(image.name);
+  auto start = std::chrono::steady_clock::now();
+  ParallelFor(names.size(), num_threads,
+              [&](std::size_t i) { ReadLinearImage(workspace / "images" / names[i], ImageEncoding::kSrgb8); });
+  measurement.decode_seconds = bench::SecondsSince(start);
+  TextureOptions options;
+  options.workspace = workspace;
+  options.mesh = workspace / "scene" / "mesh.ply";
+  options.images = workspace / "images";
+  options.output = workspace / "model.glb";
+  options.baking.num_threads = num_threads;
+  start = std::chrono::steady_clock::now();
+  const TextureSummary summary = TextureWorkspace(options);
+  measurement.seconds = bench::SecondsSince(start);
+  measurement.texels = static_cast<double>(summary.baking.page_texels);
+  measurement.faces = static_cast<double>(summary.baking.num_faces);
+  return measurement;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lutex;
+  const int images = bench::IntOption(argc, argv, "--images", 200);
+  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  SetLogLevel(LogLevel::kWarning);
+  const fs::path root = fs::temp_directory_path() / "lutex_texture_benchmark";
+  fs::remove_all(root);
+  const int images_per_line = 20;
+  const int lines = std::max(1, images / images_per_line);
+  std::printf("texture benchmark: %d threads; %d and %d images of 640 x 480 over 1.25 M faces\n", num_threads,
+              lines * images_per_line, 2 * lines * images_per_line);
+  std::printf("%8s %12s %12s %8s %12s %10s\n", "images", "decode [s]", "texture [s]", "ratio", "peak [MiB]", "Mtexels");
+  for (const int factor : {1, 2}) {
+    const fs::path dive = root / ("dive_" + std::to_string(factor));
+    InChild([&] {
+      SimulateDive(dive, factor * lines, images_per_line, num_threads);
+      return Measurement{};
+    });
+    const Measurement m = InChild([&] { return Texture(dive / "W", num_threads); });
+    std::printf("%8d %12.2f %12.2f %8.1f %12.0f %10.1f\n", factor * lines * images_per_line, m.decode_seconds,
+                m.seconds, m.seconds / m.decode_seconds, m.peak_mib, m.texels / 1e6);
+    std::fflush(stdout);
+  }
+  fs::remove_all(root);
+  return 0;
+}
