@@ -4,6 +4,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <tuple>
 
 #include "colmap_integration/images_by_camera.h"
 
@@ -25,10 +26,10 @@ struct Match {
   SurfaceView view;
 };
 
-// Candidate partners per image, best first.
-std::map<std::uint32_t, std::vector<std::uint32_t>> CandidatePartners(const SparseModel& model,
-                                                                       const std::map<std::uint32_t, ImageSamples>& samples,
-                                                                       std::size_t count) {
+}  // namespace
+
+std::map<std::uint32_t, std::vector<std::uint32_t>> CandidatePartners(
+    const SparseModel& model, const std::map<std::uint32_t, Eigen::Vector3d>& look_at_by_image, std::size_t count) {
   std::map<std::uint32_t, std::map<std::uint32_t, std::size_t>> shared;
   for (const auto& [id, point] : model.points3D) {
     for (std::size_t i = 0; i < point.track.size(); ++i) {
@@ -38,25 +39,29 @@ std::map<std::uint32_t, std::vector<std::uint32_t>> CandidatePartners(const Spar
     }
   }
   std::map<std::uint32_t, std::vector<std::uint32_t>> candidates;
-  for (const auto& [a, a_samples] : samples) {
-    if (a_samples.samples.empty()) continue;
-    std::vector<std::pair<double, std::uint32_t>> ranked;  // (score, image), smaller is better
-    for (const auto& [b, b_samples] : samples) {
-      if (b == a || b_samples.samples.empty()) continue;
-      if (!shared.empty()) {
-        const auto found = shared[a].find(b);
-        if (found != shared[a].end()) ranked.emplace_back(-static_cast<double>(found->second), b);
+  for (const auto& [a, a_look_at] : look_at_by_image) {
+    // (rank class, score, image), smaller first: images sharing points (most first), then the rest by
+    // the distance between look-at points.
+    std::vector<std::tuple<int, double, std::uint32_t>> ranked;
+    const auto a_shared = shared.find(a);
+    for (const auto& [b, b_look_at] : look_at_by_image) {
+      if (b == a) continue;
+      std::size_t common = 0;
+      if (a_shared != shared.end()) {
+        const auto found = a_shared->second.find(b);
+        if (found != a_shared->second.end()) common = found->second;
+      }
+      if (common > 0) {
+        ranked.emplace_back(0, -static_cast<double>(common), b);
       } else {
-        ranked.emplace_back((b_samples.look_at - a_samples.look_at).norm(), b);
+        ranked.emplace_back(1, (b_look_at - a_look_at).norm(), b);
       }
     }
     std::sort(ranked.begin(), ranked.end());
-    for (std::size_t i = 0; i < std::min(count, ranked.size()); ++i) candidates[a].push_back(ranked[i].second);
+    for (std::size_t i = 0; i < std::min(count, ranked.size()); ++i) candidates[a].push_back(std::get<2>(ranked[i]));
   }
   return candidates;
 }
-
-}  // namespace
 
 void SurveyCorrespondenceOptions::Check() const {
   superpixels.Check();
@@ -85,7 +90,11 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const Workspace& workspace, c
     std::lock_guard<std::mutex> lock(mutex);
     samples[image.image_id] = std::move(result);
   });
-  const auto candidates = CandidatePartners(model, samples, static_cast<std::size_t>(options.candidates));
+  std::map<std::uint32_t, Eigen::Vector3d> look_at_by_image;
+  for (const auto& [id, image_samples] : samples) {
+    if (!image_samples.samples.empty()) look_at_by_image[id] = image_samples.look_at;
+  }
+  const auto candidates = CandidatePartners(model, look_at_by_image, static_cast<std::size_t>(options.candidates));
   // Who asks image B: (image A, rank of B among A's candidates).
   std::map<std::uint32_t, std::vector<std::pair<std::uint32_t, std::size_t>>> askers;
   for (const auto& [a, list] : candidates) {

@@ -7,12 +7,13 @@
 //   2. every image B looks up the samples of the images that chose B as a candidate partner
 //      (correspondence_views.h).
 // Candidate partners of image A: the `candidates` images sharing the most COLMAP 3-D points with A (the
-// overlap graph of the reconstruction), or, when the model has no tracks, the images whose look-at
-// points (the mean of their samples) are nearest to A's. A sample keeps its views in at most `partners`
+// overlap graph of the reconstruction), filled up, when fewer share points with A (or the model has no
+// tracks), by the images whose look-at points (the mean of their samples) are nearest to A's. A sample keeps its views in at most `partners`
 // of them, in candidate order, so the number of correspondences grows linearly with the survey and the
 // result does not depend on the thread count. Memory: the samples (about 300 per image) and the matches.
 
 #include <cstddef>
+#include <map>
 #include <vector>
 
 #include "colmap_integration/sparse_model.h"
@@ -41,6 +42,12 @@ struct SurveyCorrespondences {
   std::size_t num_images = 0;
   std::size_t num_samples = 0;
 };
+
+// The candidate partners of every image of `look_at_by_image` (images without samples are left out),
+// best first, at most `count` each: images sharing COLMAP 3-D points (most shared first; ties by id),
+// then the other images by the distance between look-at points.
+std::map<std::uint32_t, std::vector<std::uint32_t>> CandidatePartners(
+    const SparseModel& model, const std::map<std::uint32_t, Eigen::Vector3d>& look_at_by_image, std::size_t count);
 
 SurveyCorrespondences ExtractSurveyCorrespondences(const Workspace& workspace, const SparseModel& model,
                                                    const RaycastScene& scene,
