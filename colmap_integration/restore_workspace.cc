@@ -5,8 +5,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include <opencv2/imgproc.hpp>
-
+#include "colmap_integration/confidence_map_io.h"
 #include "colmap_integration/images_by_camera.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/workspace.h"
@@ -109,13 +108,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
     const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
     const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr);
     WriteLinearImage(restored.albedo, RestoredPath(summary.output, image.name, output_encoding), output_encoding);
-    fs::path confidence_path = summary.confidence_output / image.name;
-    confidence_path.replace_extension(".png");
-    // Confidence is a plain fraction, stored linearly in 8 bits.
-    cv::Mat confidence_bgr;
-    cv::cvtColor(restored.confidence, confidence_bgr, cv::COLOR_RGB2BGR);
-    confidence_bgr.convertTo(confidence_bgr, CV_8UC3, 255.0);
-    WriteEncodedImage(confidence_bgr, confidence_path);
+    WriteConfidenceMap(restored.confidence, ConfidenceMapPath(summary.confidence_output, image.name));
     const int surfaces = cv::countNonZero(maps.depth == maps.depth);
     const cv::Scalar total = cv::sum(restored.confidence);
     std::lock_guard<std::mutex> lock(summary_mutex);

@@ -3,9 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
+#include "colmap_integration/confidence_map_io.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/workspace.h"
 #include "lib/geometry/mesh_io.h"
@@ -29,21 +27,6 @@ fs::path FindImage(const fs::path& folder, const std::string& name) {
     if (fs::exists(renamed)) return renamed;
   }
   return {};
-}
-
-// An 8-bit confidence map (255 = 1) as CV_32FC3 RGB.
-cv::Mat ReadConfidence(const fs::path& path, const Camera& camera) {
-  const cv::Mat encoded = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (encoded.empty()) throw std::runtime_error(path.string() + ": cannot read the confidence map");
-  if (encoded.cols != static_cast<int>(camera.width) || encoded.rows != static_cast<int>(camera.height)) {
-    throw std::runtime_error(path.string() + ": the confidence map is " + std::to_string(encoded.cols) + "x" +
-                             std::to_string(encoded.rows) + " but its camera is " + std::to_string(camera.width) +
-                             "x" + std::to_string(camera.height));
-  }
-  cv::Mat rgb;
-  cv::cvtColor(encoded, rgb, cv::COLOR_BGR2RGB);
-  rgb.convertTo(rgb, CV_32FC3, 1.0 / 255.0);
-  return rgb;
 }
 
 }  // namespace
@@ -93,8 +76,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
     }
     image_paths.push_back(path);
     if (!summary.confidence.empty()) {
-      fs::path confidence = summary.confidence / image.name;
-      confidence.replace_extension(".png");
+      const fs::path confidence = ConfidenceMapPath(summary.confidence, image.name);
       if (!fs::exists(confidence)) throw std::runtime_error(confidence.string() + ": no such confidence map");
       confidence_paths.push_back(confidence);
     }
@@ -114,7 +96,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
     return image;
   };
   if (!confidence_paths.empty()) {
-    source.confidence = [&](std::size_t v) { return ReadConfidence(confidence_paths[v], views[v].camera); };
+    source.confidence = [&](std::size_t v) { return ReadConfidenceMap(confidence_paths[v], views[v].camera); };
   }
   TextureBakingResult result = BakeTexture(mesh, views, source, options.baking);
   summary.baking = result.summary;
