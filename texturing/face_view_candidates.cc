@@ -77,10 +77,7 @@ FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency&
   ParallelFor(views.size(), options.num_threads, [&](std::size_t view_index) {
     const TextureView& view = views[view_index];
     const GeometryMaps maps = raycaster.Render(view);
-    const cv::Mat confidence = source.confidence ? source.confidence(view_index) : cv::Mat();
-    if (!confidence.empty() && (confidence.size() != maps.depth.size() || confidence.type() != CV_32FC3)) {
-      throw std::runtime_error(view.name + ": the confidence map does not match the camera's size");
-    }
+    const cv::Mat confidence = LoadViewConfidence(source, views, view_index);
     thread_local FaceHits face_hits;
     face_hits.Resize(num_faces);
     face_hits.Clear();

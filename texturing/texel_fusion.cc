@@ -204,15 +204,8 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
                               used_views.size(), "views");
     ParallelFor(used_views.size(), options.num_threads, [&](std::size_t i) {
       const std::size_t v = used_views[i];
-      const cv::Mat colour = source.linear_rgb(v);
-      const cv::Mat confidence = source.confidence ? source.confidence(v) : cv::Mat();
-      const cv::Size size(static_cast<int>(views[v].camera.width), static_cast<int>(views[v].camera.height));
-      if (colour.size() != size || colour.type() != CV_32FC3) {
-        throw std::runtime_error(views[v].name + ": the image does not match its camera's size");
-      }
-      if (!confidence.empty() && (confidence.size() != size || confidence.type() != CV_32FC3)) {
-        throw std::runtime_error(views[v].name + ": the confidence map does not match the camera's size");
-      }
+      const cv::Mat colour = LoadViewImage(source, views, v);
+      const cv::Mat confidence = LoadViewConfidence(source, views, v);
       const GeometryMaps maps = raycaster.Render(views[v]);
       SampleView(mesh, views[v], static_cast<std::uint32_t>(v), maps, colour, confidence, faces_of_view[v], layout,
                  first_texel, samples, locks);

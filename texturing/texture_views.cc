@@ -1,6 +1,32 @@
 #include "texturing/texture_views.h"
 
+#include <stdexcept>
+
 namespace lutex {
+
+namespace {
+
+void CheckViewPixels(const cv::Mat& pixels, const TextureView& view, const char* what) {
+  const cv::Size size(static_cast<int>(view.camera.width), static_cast<int>(view.camera.height));
+  if (pixels.size() != size || pixels.type() != CV_32FC3) {
+    throw std::runtime_error(view.name + ": the " + what + " does not match the camera's size");
+  }
+}
+
+}  // namespace
+
+cv::Mat LoadViewImage(const ViewImageSource& source, const std::vector<TextureView>& views, std::size_t view_index) {
+  cv::Mat image = source.linear_rgb(view_index);
+  CheckViewPixels(image, views[view_index], "image");
+  return image;
+}
+
+cv::Mat LoadViewConfidence(const ViewImageSource& source, const std::vector<TextureView>& views,
+                           std::size_t view_index) {
+  cv::Mat confidence = source.confidence ? source.confidence(view_index) : cv::Mat();
+  if (!confidence.empty()) CheckViewPixels(confidence, views[view_index], "confidence map");
+  return confidence;
+}
 
 const CameraRays& ViewRaycaster::RaysFor(const Camera& camera) const {
   std::lock_guard<std::mutex> lock(mutex_);

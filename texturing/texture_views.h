@@ -37,6 +37,14 @@ struct ViewImageSource {
   std::function<cv::Mat(std::size_t view_index)> confidence;
 };
 
+// The view's image from `source`; throws naming the view when it is not CV_32FC3 of the camera's size.
+cv::Mat LoadViewImage(const ViewImageSource& source, const std::vector<TextureView>& views, std::size_t view_index);
+
+// The view's confidence, or an empty Mat when the source has none for it; throws naming the view when it
+// is not CV_32FC3 of the camera's size.
+cv::Mat LoadViewConfidence(const ViewImageSource& source, const std::vector<TextureView>& views,
+                           std::size_t view_index);
+
 // Ray casts views of one mesh. The ray table of each camera is built once, on first use, and shared by
 // every view with the same camera id (a dive usually has one camera).
 class ViewRaycaster {
