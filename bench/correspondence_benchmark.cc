@@ -13,8 +13,8 @@
 #include <iostream>
 #include <string>
 
+#include "bench/bench_dive.h"
 #include "bench/bench_options.h"
-#include "colmap_integration/simulate_workspace.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/survey_correspondences.h"
 #include "colmap_integration/workspace.h"
@@ -33,21 +33,11 @@ int main(int argc, char** argv) {
   SetLogLevel(LogLevel::kWarning);
   const fs::path root = fs::temp_directory_path() / "lutex_correspondence_benchmark";
   fs::remove_all(root);
-  fs::create_directories(root);
-  std::ofstream(root / "scene.json")
-      << R"({"mesh": {"synthetic": {"size": [12, 10]}},
-         "camera": {"model": "PINHOLE", "width": 1152, "height": 864, "params": [720, 720, 576, 432]},
-         "survey": {"pattern": "lawnmower", "x": [-4.5, 4.5], "y": [-3, 3], "lines": )"
-      << lines << R"(, "images_per_line": )" << per_line << R"(, "altitude": 2},
-         "lights": [{"position": [-0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"},
-                    {"position": [0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"}],
-         "water": {"absorption": [0.35, 0.05, 0.02], "scattering": [0.04, 0.045, 0.05], "g": 0.88},
-         "sensor": {"exposure": 4, "shot_noise": 0.01, "read_noise": 0.002}})";
-  SimulateOptions simulate;
-  simulate.scene = root / "scene.json";
-  simulate.output = root / "W";
-  simulate.num_threads = num_threads;
-  SimulateWorkspace(simulate);
+  bench::SimulateDive(root, R"({"synthetic": {"size": [12, 10]}})",
+                      R"({"model": "PINHOLE", "width": 1152, "height": 864, "params": [720, 720, 576, 432]})",
+                      R"({"pattern": "lawnmower", "x": [-4.5, 4.5], "y": [-3, 3], "lines": )" + std::to_string(lines) +
+                          R"(, "images_per_line": )" + std::to_string(per_line) + R"(, "altitude": 2})",
+                      num_threads);
 
   const Workspace workspace = FindWorkspace(root / "W");
   const SparseModel model = ReadSparseModel(workspace.sparse_dir);

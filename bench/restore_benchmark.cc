@@ -12,9 +12,9 @@
 #include <iostream>
 #include <string>
 
+#include "bench/bench_dive.h"
 #include "bench/bench_options.h"
 #include "colmap_integration/restore_workspace.h"
-#include "colmap_integration/simulate_workspace.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "lib/image/image_io.h"
 #include "lib/util/parallel_for.h"
@@ -28,21 +28,14 @@ int main(int argc, char** argv) {
   const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
   const fs::path root = fs::temp_directory_path() / "lutex_restore_benchmark";
   fs::remove_all(root);
-  fs::create_directories(root);
-  std::ofstream(root / "scene.json")
-      << R"({"mesh": {"synthetic": {"size": [12, 10]}}, "camera": {"model": "PINHOLE", "width": )" << width
-      << R"(, "height": )" << height << R"(, "params": [)" << width / 2 << ", " << width / 2 << ", " << width / 2 << ", "
-      << height / 2 << R"(]}, "survey": {"lines": 1, "images_per_line": )" << images
-      << R"(, "x": [-4, 4], "y": [0, 0], "altitude": 2},
-         "lights": [{"position": [-0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"},
-                    {"position": [0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"}],
-         "water": {"absorption": [0.35, 0.05, 0.02], "scattering": [0.04, 0.045, 0.05], "g": 0.88},
-         "sensor": {"exposure": 4, "shot_noise": 0.01, "read_noise": 0.002}})";
-  SimulateOptions simulate;
-  simulate.scene = root / "scene.json";
-  simulate.output = root / "W";
-  simulate.num_threads = num_threads;
-  SimulateWorkspace(simulate);
+  bench::SimulateDive(root, R"({"synthetic": {"size": [12, 10]}})",
+                      R"({"model": "PINHOLE", "width": )" + std::to_string(width) + R"(, "height": )" +
+                          std::to_string(height) + R"(, "params": [)" + std::to_string(width / 2) + ", " +
+                          std::to_string(width / 2) + ", " + std::to_string(width / 2) + ", " +
+                          std::to_string(height / 2) + "]}",
+                      R"({"lines": 1, "images_per_line": )" + std::to_string(images) +
+                          R"(, "x": [-4, 4], "y": [0, 0], "altitude": 2})",
+                      num_threads);
 
   const SparseModel model = ReadSparseModel(root / "W" / "sparse" / "0");
   auto start = std::chrono::steady_clock::now();

@@ -17,8 +17,8 @@
 #include <iostream>
 #include <string>
 
+#include "bench/bench_dive.h"
 #include "bench/bench_options.h"
-#include "colmap_integration/simulate_workspace.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/texture_workspace.h"
 #include "lib/image/image_io.h"
@@ -62,22 +62,14 @@ Measurement InChild(const std::function<Measurement()>& work) {
   return measurement;
 }
 
-void SimulateDive(const fs::path& root, int lines, int images_per_line, int num_threads) {
-  fs::create_directories(root);
-  std::ofstream(root / "scene.json")
-      << R"({"mesh": {"synthetic": {"size": [20, 12.5], "cell_size": 0.02, "relief": 0.2}},
-         "camera": {"model": "PINHOLE", "width": 640, "height": 480, "params": [400, 400, 320, 240]},
-         "survey": {"pattern": "lawnmower", "x": [-8.5, 8.5], "y": [-5, 5], "lines": )"
-      << lines << R"(, "images_per_line": )" << images_per_line << R"(, "altitude": 2},
-         "lights": [{"position": [-0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"},
-                    {"position": [0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"}],
-         "water": {"absorption": [0.35, 0.05, 0.02], "scattering": [0.04, 0.045, 0.05], "g": 0.88},
-         "sensor": {"exposure": 4, "shot_noise": 0.01, "read_noise": 0.002}})";
-  lutex::SimulateOptions simulate;
-  simulate.scene = root / "scene.json";
-  simulate.output = root / "W";
-  simulate.num_threads = num_threads;
-  lutex::SimulateWorkspace(simulate);
+// The 20 x 12.5 m, 1.25 M-face dive with `lines` survey lines.
+void SimulateTextureDive(const fs::path& root, int lines, int images_per_line, int num_threads) {
+  lutex::bench::SimulateDive(root, R"({"synthetic": {"size": [20, 12.5], "cell_size": 0.02, "relief": 0.2}})",
+                             R"({"model": "PINHOLE", "width": 640, "height": 480, "params": [400, 400, 320, 240]})",
+                             R"({"pattern": "lawnmower", "x": [-8.5, 8.5], "y": [-5, 5], "lines": )" +
+                                 std::to_string(lines) + R"(, "images_per_line": )" + std::to_string(images_per_line) +
+                                 R"(, "altitude": 2})",
+                             num_threads);
 }
 
 Measurement Texture(const fs::path& workspace, int num_threads) {
@@ -121,7 +113,7 @@ int main(int argc, char** argv) {
   for (const int factor : {1, 2}) {
     const fs::path dive = root / ("dive_" + std::to_string(factor));
     InChild([&] {
-      SimulateDive(dive, factor * lines, images_per_line, num_threads);
+      SimulateTextureDive(dive, factor * lines, images_per_line, num_threads);
       return Measurement{};
     });
     const Measurement m = InChild([&] { return Texture(dive / "W", num_threads); });

@@ -1,0 +1,31 @@
+#pragma once
+
+// The simulated dive the benchmarks run on: a scene description for lutex simulate with the given
+// mesh, camera and survey (JSON objects, as in examples/scenes), two 15 W spot lights 0.4 m to the sides
+// of the camera in clear water, and a noisy 8-bit sensor; simulated into ROOT/W.
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "colmap_integration/simulate_workspace.h"
+
+namespace lutex::bench {
+
+inline void SimulateDive(const std::filesystem::path& root, const std::string& mesh_json,
+                         const std::string& camera_json, const std::string& survey_json, int num_threads) {
+  std::filesystem::create_directories(root);
+  std::ofstream(root / "scene.json") << R"({"mesh": )" << mesh_json << R"(, "camera": )" << camera_json
+                                     << R"(, "survey": )" << survey_json << R"(,
+         "lights": [{"position": [-0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"},
+                    {"position": [0.4, 0, 0], "power_W": 15, "profile": "cycles_spot"}],
+         "water": {"absorption": [0.35, 0.05, 0.02], "scattering": [0.04, 0.045, 0.05], "g": 0.88},
+         "sensor": {"exposure": 4, "shot_noise": 0.01, "read_noise": 0.002}})";
+  SimulateOptions simulate;
+  simulate.scene = root / "scene.json";
+  simulate.output = root / "W";
+  simulate.num_threads = num_threads;
+  SimulateWorkspace(simulate);
+}
+
+}  // namespace lutex::bench
