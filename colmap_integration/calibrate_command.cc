@@ -7,8 +7,7 @@
 #include <iostream>
 #include <vector>
 
-#include "colmap_integration/calibrate_workspace.h"
-#include "colmap_integration/option_parser.h"
+#include "colmap_integration/image_encoding_option.h"
 
 namespace lutex {
 
@@ -29,9 +28,39 @@ Eigen::Vector3d ParseVector3(std::string text, const std::string& option, bool s
 
 }  // namespace
 
+void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
+  parser.AddPath("targets", &options->targets, "Targets file (JSON).");
+  parser.AddPath("targets-workspace", &options->targets_workspace, "Separate calibration images of the targets.");
+  parser.AddPath("targets-mesh", &options->targets_mesh, "Mesh of the targets in W2's world frame.");
+  parser.AddFlag("correspondences", &options->correspondences, "Correspondence constraints from W's images.");
+  parser.AddCustom("grey-world", "", "Without targets: mean albedo V or r,g,b of the surveyed surfaces.",
+                   [options](const std::string& text) {
+                     options->grey_world_albedo = ParseVector3(text, "--grey-world", true);
+                   });
+  parser.AddInt("superpixels", &options->correspondence_extraction.superpixels.count,
+                "Superpixels per image for correspondences (paper: 300).");
+  parser.AddInt("partners", &options->correspondence_extraction.partners,
+                "Views each superpixel is matched in, at most.");
+  parser.AddPath("pure-water", &options->pure_water, "Workspace of pure-water images (optional).");
+  parser.AddFlag("in-air", &options->in_air, "No water: backscatter fixed at 0.");
+  parser.AddString("reference-water", &options->reference_water, "Water of the weighting LUT: clear or coastal.");
+  parser.AddInt("lut-nx", &options->nx, "LUT cells across the image (levels: a tenth, a half, all).");
+  parser.AddInt("lut-ny", &options->ny, "LUT cells down the image.");
+  parser.AddInt("lut-nz", &options->nz, "LUT slabs in depth.");
+  parser.AddCustom("shading-light", "0,0,0",
+                   "x,y,z in the camera frame (metres) where shading puts the light: the camera centre (the paper),\n"
+                   "      or a single flash's position. Recorded in the LUT; lutex restore follows it.",
+                   [options](const std::string& text) {
+                     options->shading_light_in_cam = ParseVector3(text, "--shading-light", false);
+                   });
+  parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
+                   "Smoothness weight relative to observations (paper: 0.01).");
+  parser.AddDouble("z-near", &options->z_near, "Nearest slab's planar depth (scene units).");
+  parser.AddDouble("z-far", &options->z_far, "Farthest slab's planar depth.");
+}
+
 int RunCalibrateCommand(int argc, char** argv) {
   CalibrateOptions options;
-  std::string input_encoding = "srgb8";
   OptionParser parser(
       "lutex calibrate --workspace W --mesh M [--targets T.json [--targets-workspace W2 --targets-mesh M2]]\n"
       "                [--correspondences [--grey-world V]] [--pure-water W3] [--in-air] [--output L]",
@@ -48,40 +77,19 @@ int RunCalibrateCommand(int argc, char** argv) {
       "slab pictures beside it.");
   parser.AddPath("workspace", &options.workspace, "COLMAP workspace (images/, sparse/0 or sparse/).", true);
   parser.AddPath("mesh", &options.mesh, "Mesh of W's scene in the model's world frame.", true);
-  parser.AddPath("targets", &options.targets, "Targets file (JSON).");
-  parser.AddPath("targets-workspace", &options.targets_workspace, "Separate calibration images of the targets.");
-  parser.AddPath("targets-mesh", &options.targets_mesh, "Mesh of the targets in W2's world frame.");
-  parser.AddFlag("correspondences", &options.correspondences, "Correspondence constraints from W's images.");
-  std::string grey_world;
-  parser.AddString("grey-world", &grey_world, "Without targets: mean albedo V or r,g,b of the surveyed surfaces.");
-  parser.AddInt("superpixels", &options.correspondence_extraction.superpixels.count,
-                "Superpixels per image for correspondences (paper: 300).");
-  parser.AddInt("partners", &options.correspondence_extraction.partners,
-                "Views each superpixel is matched in, at most.");
-  parser.AddPath("pure-water", &options.pure_water, "Workspace of pure-water images (optional).");
   parser.AddPath("output", &options.output, "LUT file to write (default W/lutex/calibration/lut.lut).");
-  parser.AddString("input-encoding", &input_encoding, "srgb8, linear16 or float.");
-  parser.AddFlag("in-air", &options.in_air, "No water: backscatter fixed at 0.");
-  parser.AddString("reference-water", &options.reference_water, "Water of the weighting LUT: clear or coastal.");
-  parser.AddInt("lut-nx", &options.nx, "LUT cells across the image (levels: a tenth, a half, all).");
-  parser.AddInt("lut-ny", &options.ny, "LUT cells down the image.");
-  parser.AddInt("lut-nz", &options.nz, "LUT slabs in depth.");
+  AddImageEncodingOption(parser, "input-encoding", &options.input_encoding, "How W's images are encoded:");
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
-  std::string shading_light = "0,0,0";
-  parser.AddString("shading-light", &shading_light,
-                   "x,y,z in the camera frame (metres) where shading puts the light: the camera centre (the paper),\n"
-                   "      or a single flash's position. Recorded in the LUT; lutex restore follows it.");
-  parser.AddDouble("smoothness", &options.calibration.smoothness_scale,
-                   "Smoothness weight relative to observations (paper: 0.01).");
-  parser.AddDouble("z-near", &options.z_near, "Nearest slab's planar depth (scene units).");
-  parser.AddDouble("z-far", &options.z_far, "Farthest slab's planar depth.");
+  AddCalibrateStageOptions(parser, &options);
   if (!parser.Parse(argc, argv, 2)) return 0;
-  options.input_encoding = ParseImageEncoding(input_encoding);
-  options.shading_light_in_cam = ParseVector3(shading_light, "--shading-light", false);
-  if (!grey_world.empty()) options.grey_world_albedo = ParseVector3(grey_world, "--grey-world", true);
   const CalibrateSummary summary = CalibrateWorkspace(options);
+  PrintCalibrateSummary(std::cout, summary);
+  return 0;
+}
+
+void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
   const CalibrationSummary& c = summary.calibration;
-  std::cout << std::fixed << std::setprecision(4) << "calibrate: " << summary.num_images << " images, "
+  out << std::fixed << std::setprecision(4) << "calibrate: " << summary.num_images << " images, "
             << c.num_known_color << " known-colour, " << c.num_correspondences << " correspondence and "
             << c.num_pure_water << " pure-water observations ("
             << summary.num_pure_water_images << " pure-water images, " << summary.num_pure_water_skipped
@@ -92,7 +100,6 @@ int RunCalibrateCommand(int argc, char** argv) {
             << std::setprecision(1) << c.seconds << " s\n"
             << "  LUT:      " << summary.lut.string() << "\n"
             << "  coverage: " << (summary.lut.parent_path() / "coverage.lut").string() << "\n";
-  return 0;
 }
 
 }  // namespace lutex

@@ -261,6 +261,16 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
                               {"iterations", {level.iterations[0], level.iterations[1], level.iterations[2]}},
                               {"final_cost", {level.final_cost[0], level.final_cost[1], level.final_cost[2]}}});
   }
+  const auto histogram_json = [](const ResidualHistogram& histogram) {
+    nlohmann::json entry;
+    entry["range"] = histogram.range();
+    for (int c = 0; c < 3; ++c) entry["counts"].push_back(histogram.counts(c));
+    return entry;
+  };
+  json["residual_histograms"] = {
+      {"known_color", histogram_json(result.summary.known_color_residuals)},
+      {"correspondence_albedo_difference", histogram_json(result.summary.correspondence_albedo_differences)},
+      {"pure_water_excess", histogram_json(result.summary.pure_water_excess)}};
   WriteFileAtomically(summary.lut.parent_path() / "calibration_summary.json", std::ios::out,
                       [&json](std::ostream& stream) { stream << json.dump(2) << "\n"; });
   return summary;

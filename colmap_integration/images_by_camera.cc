@@ -1,5 +1,6 @@
 #include "colmap_integration/images_by_camera.h"
 
+#include <algorithm>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -34,6 +35,19 @@ void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::
     });
   }
   progress.Finish();
+}
+
+SparseModel WithoutDoneImages(const SparseModel& model,
+                              const std::function<std::vector<std::filesystem::path>(const Image&)>& outputs_of) {
+  SparseModel todo;
+  todo.cameras = model.cameras;
+  for (const auto& [id, image] : model.images) {
+    const std::vector<std::filesystem::path> outputs = outputs_of(image);
+    const bool done = std::all_of(outputs.begin(), outputs.end(),
+                                  [](const std::filesystem::path& path) { return std::filesystem::exists(path); });
+    if (!done) todo.images.emplace(id, image);
+  }
+  return todo;
 }
 
 }  // namespace lutex

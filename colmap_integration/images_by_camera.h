@@ -5,8 +5,10 @@
 // one ray table is built per group, so memory holds one table and `num_threads` images at a time,
 // whatever the number of images. Progress is reported per image.
 
+#include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "colmap_integration/sparse_model.h"
 #include "lib/raycast/camera_rays.h"
@@ -21,5 +23,11 @@ GeometryMapsOptions PerImageMapsOptions();
 // Calls visit(image, rays) for every image; throws the first exception any call throws.
 void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::string& progress_label,
                           const std::function<void(const Image&, const CameraRays&)>& visit);
+
+// The cameras of `model` and those of its images that still have an output to write: an image is done when
+// every file `outputs_of(image)` names exists (files are written under temporary names and renamed, so an
+// existing one is complete). No 3-D points. Resumed runs visit this instead of the whole model.
+SparseModel WithoutDoneImages(const SparseModel& model,
+                              const std::function<std::vector<std::filesystem::path>(const Image&)>& outputs_of);
 
 }  // namespace lutex

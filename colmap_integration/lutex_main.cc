@@ -8,7 +8,9 @@
 
 #include "colmap_integration/calibrate_command.h"
 #include "colmap_integration/raycast_command.h"
+#include "colmap_integration/report_command.h"
 #include "colmap_integration/restore_command.h"
+#include "colmap_integration/run_command.h"
 #include "colmap_integration/simulate_command.h"
 #include "colmap_integration/texture_command.h"
 
@@ -21,9 +23,11 @@ struct Command {
 };
 
 const Command kCommands[] = {
-    {"calibrate", &lutex::RunCalibrateCommand, "fit the LUT from images of known-colour targets (+ pure water)"},
+    {"calibrate", &lutex::RunCalibrateCommand, "fit the LUT from known-colour targets and/or correspondences (+ pure water)"},
     {"raycast", &lutex::RunRaycastCommand, "per-image depth and normal maps of a mesh (COLMAP .bin + previews)"},
+    {"report", &lutex::RunReportCommand, "an HTML page about a workspace's LUT, residuals, restored images, texture"},
     {"restore", &lutex::RunRestoreCommand, "restore images to albedo with a calibrated LUT, with confidence maps"},
+    {"run", &lutex::RunRunCommand, "all of it, resumable: calibrate, restore, texture and report in W/lutex/"},
     {"simulate", &lutex::RunSimulateCommand, "render a scene description into a COLMAP workspace with ground truth"},
     {"texture", &lutex::RunTextureCommand, "bake one albedo texture onto the mesh and write GLB (or glTF, OBJ, PLY)"},
 };

@@ -1,5 +1,6 @@
 #include "colmap_integration/option_parser.h"
 
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -8,12 +9,6 @@ namespace lutex {
 
 OptionParser::OptionParser(std::string usage, std::string summary)
     : usage_(std::move(usage)), summary_(std::move(summary)) {}
-
-void OptionParser::AddPath(const std::string& name, std::filesystem::path* value, const std::string& help,
-                           bool required) {
-  options_.push_back({name, help, value->empty() ? "" : value->string(), required, false, false,
-                      [value](const std::string& text) { *value = text; }});
-}
 
 namespace {
 
@@ -35,29 +30,52 @@ T ParseNumber(const std::string& name, const std::string& text, const char* kind
 
 }  // namespace
 
+void OptionParser::Add(const std::string& name, const std::string& help, const std::string& default_text,
+                       std::function<void(const std::string&)> set) {
+  Option option;
+  option.name = name;
+  option.help = help;
+  option.default_text = default_text;
+  option.set = std::move(set);
+  option.group = group_;
+  options_.push_back(std::move(option));
+}
+
+void OptionParser::AddPath(const std::string& name, std::filesystem::path* value, const std::string& help,
+                           bool required) {
+  Add(name, help, value->string(), [value](const std::string& text) { *value = text; });
+  options_.back().required = required;
+  options_.back().is_path = true;
+}
+
 void OptionParser::AddInt(const std::string& name, int* value, const std::string& help) {
-  options_.push_back({name, help, std::to_string(*value), false, false, false, [value, name](const std::string& text) {
-                        *value = ParseNumber<int>(name, text, "a whole number",
-                                                  [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
-                      }});
+  Add(name, help, std::to_string(*value), [value, name](const std::string& text) {
+    *value = ParseNumber<int>(name, text, "a whole number",
+                              [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
+  });
 }
 
 void OptionParser::AddDouble(const std::string& name, double* value, const std::string& help) {
   std::ostringstream shown;
   shown << *value;
-  options_.push_back({name, help, shown.str(), false, false, false, [value, name](const std::string& text) {
-                        *value = ParseNumber<double>(name, text, "a number",
-                                                     [](const std::string& t, std::size_t* used) { return std::stod(t, used); });
-                      }});
+  Add(name, help, shown.str(), [value, name](const std::string& text) {
+    *value = ParseNumber<double>(name, text, "a number",
+                                 [](const std::string& t, std::size_t* used) { return std::stod(t, used); });
+  });
 }
 
 void OptionParser::AddString(const std::string& name, std::string* value, const std::string& help) {
-  options_.push_back({name, help, *value, false, false, false, [value](const std::string& text) { *value = text; }});
+  Add(name, help, *value, [value](const std::string& text) { *value = text; });
 }
 
 void OptionParser::AddFlag(const std::string& name, bool* value, const std::string& help) {
-  options_.push_back({name, help, *value ? "on" : "off", false, true, false,
-                      [value](const std::string& text) { *value = text == "true"; }});
+  Add(name, help, *value ? "on" : "off", [value](const std::string& text) { *value = text == "true"; });
+  options_.back().is_flag = true;
+}
+
+void OptionParser::AddCustom(const std::string& name, const std::string& default_text, const std::string& help,
+                             std::function<void(const std::string&)> set) {
+  Add(name, help, default_text, std::move(set));
 }
 
 OptionParser::Option& OptionParser::Find(const std::string& name) {
@@ -67,38 +85,99 @@ OptionParser::Option& OptionParser::Find(const std::string& name) {
   throw std::invalid_argument("unknown option --" + name + " (see --help)");
 }
 
+void OptionParser::Apply(std::string argument, const std::function<std::string(const std::string&)>& next_value,
+                         const std::filesystem::path& relative_to) {
+  std::string value;
+  bool has_value = false;
+  if (const auto equals = argument.find('='); equals != std::string::npos) {
+    value = argument.substr(equals + 1);
+    argument = argument.substr(0, equals);
+    has_value = true;
+  }
+  bool negated = false;
+  if (argument.rfind("no-", 0) == 0) {
+    for (const Option& option : options_) negated |= option.is_flag && option.name == argument.substr(3);
+  }
+  Option& option = Find(negated ? argument.substr(3) : argument);
+  if (option.is_flag) {
+    if (has_value) throw std::invalid_argument("--" + option.name + " is a flag and takes no value");
+    option.set(negated ? "false" : "true");
+    option.text = negated ? "off" : "on";
+  } else {
+    if (!has_value) value = next_value(option.name);
+    if (option.is_path && !relative_to.empty() && !value.empty() && std::filesystem::path(value).is_relative()) {
+      value = (relative_to / value).lexically_normal().string();
+    }
+    option.set(value);
+    option.text = value;
+  }
+  option.seen = true;
+}
+
+std::map<std::string, std::string> OptionParser::Settings(const std::string& group) const {
+  std::map<std::string, std::string> settings;
+  for (const Option& option : options_) {
+    if (option.group == group) settings[option.name] = option.seen ? option.text : option.default_text;
+  }
+  return settings;
+}
+
+void OptionParser::ReadConfigFile(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) throw std::invalid_argument("--config: cannot read " + path.string());
+  const std::filesystem::path folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  std::string line;
+  for (int number = 1; std::getline(file, line); ++number) {
+    const auto trim = [](const std::string& text) {
+      const auto first = text.find_first_not_of(" \t\r");
+      if (first == std::string::npos) return std::string();
+      return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+    };
+    line = trim(line);
+    if (line.empty() || line[0] == '#') continue;
+    if (line.rfind("--", 0) == 0) line = line.substr(2);
+    std::string argument = line;
+    if (const auto equals = line.find('='); equals != std::string::npos) {
+      argument = trim(line.substr(0, equals)) + "=" + trim(line.substr(equals + 1));
+    }
+    try {
+      if (argument.rfind("config=", 0) == 0) throw std::invalid_argument("a config file cannot name another");
+      Apply(argument, [](const std::string& name) -> std::string {
+        throw std::invalid_argument("--" + name + " needs a value (name = value)");
+      }, folder);
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument(path.string() + ":" + std::to_string(number) + ": " + error.what());
+    }
+  }
+}
+
 bool OptionParser::Parse(int argc, char** argv, int first) {
+  // The config file first, so that the command line wins.
   for (int i = first; i < argc; ++i) {
-    std::string argument = argv[i];
+    const std::string argument = argv[i];
     if (argument == "--help" || argument == "-h") {
       std::cout << Help();
       return false;
     }
+    if (argument == "--config") {
+      if (i + 1 >= argc) throw std::invalid_argument("--config needs a value");
+      ReadConfigFile(argv[i + 1]);
+    } else if (argument.rfind("--config=", 0) == 0) {
+      ReadConfigFile(argument.substr(9));
+    }
+  }
+  for (int i = first; i < argc; ++i) {
+    const std::string argument = argv[i];
     if (argument.rfind("--", 0) != 0) throw std::invalid_argument("unexpected argument '" + argument + "' (see --help)");
-    argument = argument.substr(2);
-    std::string value;
-    bool has_value = false;
-    if (const auto equals = argument.find('='); equals != std::string::npos) {
-      value = argument.substr(equals + 1);
-      argument = argument.substr(0, equals);
-      has_value = true;
+    if (argument == "--config") {
+      ++i;
+      continue;
     }
-    bool negated = false;
-    if (argument.rfind("no-", 0) == 0) {
-      for (const Option& option : options_) negated |= option.is_flag && option.name == argument.substr(3);
-    }
-    Option& option = Find(negated ? argument.substr(3) : argument);
-    if (option.is_flag) {
-      if (has_value) throw std::invalid_argument("--" + option.name + " is a flag and takes no value");
-      option.set(negated ? "false" : "true");
-    } else {
-      if (!has_value) {
-        if (i + 1 >= argc) throw std::invalid_argument("--" + option.name + " needs a value");
-        value = argv[++i];
-      }
-      option.set(value);
-    }
-    option.seen = true;
+    if (argument.rfind("--config=", 0) == 0) continue;
+    Apply(argument.substr(2), [&](const std::string& name) -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument("--" + name + " needs a value");
+      return argv[++i];
+    }, {});
   }
   for (const Option& option : options_) {
     if (option.required && !option.seen) throw std::invalid_argument("--" + option.name + " is required (see --help)");
@@ -118,7 +197,9 @@ std::string OptionParser::Help() const {
     }
     out << "\n      " << option.help << "\n";
   }
-  out << "  --help\n      Show this help.\n";
+  out << "  --config FILE\n      Read options from FILE: one per line, 'name = value' or a flag's name; '#' starts a\n"
+         "      comment; relative paths are relative to FILE's folder; the command line wins.\n"
+         "  --help\n      Show this help.\n";
   return out.str();
 }
 

@@ -3,9 +3,20 @@
 // Command-line options of one sub-command: `--name value` or `--name=value`, flags without a value,
 // `--help` that prints every option with its default and description. Unknown options, missing values
 // and unparsable numbers are errors that name the option.
+//
+// Every command also reads options from a file with `--config FILE`: one option per line, written as on
+// the command line without the leading dashes,
+//
+//   # lutex run options for the 2026 dive
+//   targets = calibration/targets.json     (relative paths are relative to the file's folder)
+//   correspondences                        (a flag; `no-correspondences` turns it off)
+//   lut-nx = 40
+//
+// Blank lines and lines starting with '#' are ignored. Options on the command line win over the file's.
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,9 +34,21 @@ class OptionParser {
   void AddString(const std::string& name, std::string* value, const std::string& help);
   // A flag sets *value = true; `--no-NAME` sets it to false.
   void AddFlag(const std::string& name, bool* value, const std::string& help);
+  // An option whose text `set` converts itself (and throws std::invalid_argument on nonsense, naming the
+  // option); `default_text` is what --help shows.
+  void AddCustom(const std::string& name, const std::string& default_text, const std::string& help,
+                 std::function<void(const std::string&)> set);
 
-  // Parses argv[first..argc). Returns false when --help was asked for (help has been printed on stdout).
-  // Throws std::invalid_argument on any error.
+  // Options added from now on belong to `group` (initially ""): a command running several stages asks
+  // for the settings of each stage's group.
+  void SetGroup(std::string group) { group_ = std::move(group); }
+  // Name -> value text (as given on the command line or in the config file, else the default; flags "on"
+  // or "off") of every option of `group`.
+  std::map<std::string, std::string> Settings(const std::string& group) const;
+
+  // Parses argv[first..argc) (after the options of the --config file, if one is given). Returns false when
+  // --help was asked for (help has been printed on stdout). Throws std::invalid_argument on any error; an
+  // error in the config file names the file and line.
   bool Parse(int argc, char** argv, int first);
 
   std::string Help() const;
@@ -37,13 +60,23 @@ class OptionParser {
     std::string default_text;
     bool required = false;
     bool is_flag = false;
+    bool is_path = false;
     bool seen = false;
     std::function<void(const std::string&)> set;
+    std::string group;
+    std::string text;  // the value as given
   };
+  void Add(const std::string& name, const std::string& help, const std::string& default_text,
+           std::function<void(const std::string&)> set);
   Option& Find(const std::string& name);
+  // Applies `--NAME[=VALUE]` (name without dashes; `value` used when the option takes one and has none).
+  void Apply(std::string argument, const std::function<std::string(const std::string&)>& next_value,
+             const std::filesystem::path& relative_to);
+  void ReadConfigFile(const std::filesystem::path& path);
 
   std::string usage_;
   std::string summary_;
+  std::string group_;
   std::vector<Option> options_;
 };
 

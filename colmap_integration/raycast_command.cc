@@ -3,8 +3,6 @@
 #include <iomanip>
 #include <iostream>
 
-#include "colmap_integration/option_parser.h"
-#include "colmap_integration/raycast_workspace.h"
 
 namespace lutex {
 
@@ -24,15 +22,17 @@ int RunRaycastCommand(int argc, char** argv) {
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
   parser.AddFlag("previews", &options.write_previews, "Write 8-bit depth and normal previews (--no-previews to skip).");
   if (!parser.Parse(argc, argv, 2)) return 0;
+  PrintRaycastSummary(std::cout, RaycastWorkspace(options));
+  return 0;
+}
 
-  const RaycastSummary summary = RaycastWorkspace(options);
-  std::cout << "raycast: " << summary.num_images << " images against " << summary.num_faces << " faces in "
+void PrintRaycastSummary(std::ostream& out, const RaycastSummary& summary) {
+  out << "raycast: " << summary.num_images << " images against " << summary.num_faces << " faces in "
             << std::fixed << std::setprecision(1) << summary.seconds << " s; " << std::setprecision(0)
             << 100.0 * summary.mean_hit_fraction << " % of pixels see the mesh\n"
             << "  depth maps:  " << (summary.output / "depth_maps").string() << "\n"
             << "  normal maps: " << (summary.output / "normal_maps").string() << "\n";
-  if (options.write_previews) std::cout << "  previews:    " << (summary.output / "previews").string() << "\n";
-  return 0;
+  if (summary.wrote_previews) out << "  previews:    " << (summary.output / "previews").string() << "\n";
 }
 
 }  // namespace lutex

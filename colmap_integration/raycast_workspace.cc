@@ -39,17 +39,31 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
   summary.output = options.output.empty() ? workspace.OutputDir() / "raycast" : options.output;
   summary.num_faces = mesh.NumFaces();
 
+  summary.wrote_previews = options.write_previews;
+  const auto outputs_of = [&](const Image& image) {
+    std::vector<fs::path> outputs = {summary.output / "depth_maps" / (image.name + ".geometric.bin"),
+                                     summary.output / "normal_maps" / (image.name + ".geometric.bin")};
+    if (options.write_previews) {
+      outputs.push_back(summary.output / "previews" / (image.name + ".depth.png"));
+      outputs.push_back(summary.output / "previews" / (image.name + ".normal.png"));
+    }
+    return outputs;
+  };
+  const SparseModel todo = options.skip_done ? WithoutDoneImages(model, outputs_of) : model;
+  summary.num_skipped = model.images.size() - todo.images.size();
+
   std::vector<double> hit_fractions;
   std::mutex hit_fractions_mutex;
-  ForEachImageWithRays(model, options.num_threads, "raycast", [&](const Image& image, const CameraRays& rays) {
+  ForEachImageWithRays(todo, options.num_threads, "raycast", [&](const Image& image, const CameraRays& rays) {
+    const std::vector<fs::path> outputs = outputs_of(image);
     const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
     const double hit_fraction =
         static_cast<double>(cv::countNonZero(maps.depth == maps.depth)) / static_cast<double>(maps.depth.total());
-    WriteColmapArray(ReplaceNanWithZero(maps.depth), summary.output / "depth_maps" / (image.name + ".geometric.bin"));
-    WriteColmapArray(ReplaceNanWithZero(maps.normal), summary.output / "normal_maps" / (image.name + ".geometric.bin"));
+    WriteColmapArray(ReplaceNanWithZero(maps.depth), outputs[0]);
+    WriteColmapArray(ReplaceNanWithZero(maps.normal), outputs[1]);
     if (options.write_previews) {
-      WriteEncodedImage(DepthPreview(maps.depth), summary.output / "previews" / (image.name + ".depth.png"));
-      WriteEncodedImage(NormalPreview(maps.normal), summary.output / "previews" / (image.name + ".normal.png"));
+      WriteEncodedImage(DepthPreview(maps.depth), outputs[2]);
+      WriteEncodedImage(NormalPreview(maps.normal), outputs[3]);
     }
     std::lock_guard<std::mutex> lock(hit_fractions_mutex);
     hit_fractions.push_back(hit_fraction);

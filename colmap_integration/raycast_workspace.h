@@ -25,6 +25,9 @@ struct RaycastOptions {
   int num_threads = 0;
   // Also write 8-bit previews.
   bool write_previews = true;
+  // Leave images alone whose outputs all exist (lutex run resumes so: every file is written under a
+  // temporary name and renamed when complete, so an existing one is whole).
+  bool skip_done = false;
 
   // Throws std::invalid_argument with the reason when an option is missing or nonsense.
   void Check() const;
@@ -32,9 +35,11 @@ struct RaycastOptions {
 
 struct RaycastSummary {
   std::filesystem::path output;
-  std::size_t num_images = 0;
+  std::size_t num_images = 0;   // ray-cast now
+  std::size_t num_skipped = 0;  // already done (skip_done)
   std::size_t num_faces = 0;
-  double mean_hit_fraction = 0.0;  // fraction of pixels that see the mesh, averaged over images
+  double mean_hit_fraction = 0.0;  // fraction of pixels that see the mesh, averaged over the images ray-cast now
+  bool wrote_previews = false;
   double seconds = 0.0;
 };
 

@@ -3,14 +3,12 @@
 #include <iomanip>
 #include <iostream>
 
-#include "colmap_integration/option_parser.h"
-#include "colmap_integration/restore_workspace.h"
+#include "colmap_integration/image_encoding_option.h"
 
 namespace lutex {
 
 int RunRestoreCommand(int argc, char** argv) {
   RestoreOptions options;
-  std::string input_encoding = "srgb8";
   OptionParser parser(
       "lutex restore --workspace W --mesh M --lut L [--output DIR] [--input-encoding E] [--output-encoding E]",
       "Restores every registered image of the COLMAP workspace W to albedo with the LUT L (lutex calibrate):\n"
@@ -26,23 +24,27 @@ int RunRestoreCommand(int argc, char** argv) {
   parser.AddPath("lut", &options.lut, "Calibrated LUT file.", true);
   parser.AddPath("coverage", &options.coverage,
                  "Per-node coverage of the LUT (default: coverage.lut beside the LUT, when present).");
-  bool no_coverage = false;
-  parser.AddFlag("no-coverage", &no_coverage, "Ignore the LUT's coverage in the confidence maps.");
   parser.AddPath("output", &options.output, "Output folder (default W/lutex/restored).");
-  parser.AddString("input-encoding", &input_encoding, "srgb8, linear16 or float.");
-  parser.AddString("output-encoding", &options.output_encoding, "same, srgb8, linear16 or float.");
+  AddImageEncodingOption(parser, "input-encoding", &options.input_encoding, "How W's images are encoded:");
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
+  AddRestoreStageOptions(parser, &options);
   if (!parser.Parse(argc, argv, 2)) return 0;
-  options.input_encoding = ParseImageEncoding(input_encoding);
-  options.use_coverage = !no_coverage;
-  const RestoreSummary summary = RestoreWorkspace(options);
-  std::cout << "restore: " << summary.num_images << " images in " << std::fixed << std::setprecision(1)
+  PrintRestoreSummary(std::cout, RestoreWorkspace(options));
+  return 0;
+}
+
+void AddRestoreStageOptions(OptionParser& parser, RestoreOptions* options) {
+  parser.AddFlag("no-coverage", &options->ignore_coverage, "Ignore the LUT's coverage in the confidence maps.");
+  parser.AddString("output-encoding", &options->output_encoding, "Restored images: same (as the input), srgb8, linear16 or float.");
+}
+
+void PrintRestoreSummary(std::ostream& out, const RestoreSummary& summary) {
+  out << "restore: " << summary.num_images << " images in " << std::fixed << std::setprecision(1)
             << summary.seconds << " s; mean confidence " << std::setprecision(2) << summary.mean_confidence << "\n"
             << "  restored images:  " << summary.output.string() << "\n"
             << "  confidence maps:  " << summary.confidence_output.string() << "\n"
             << "  LUT coverage:     " << (summary.coverage.empty() ? std::string("not used") : summary.coverage.string())
             << "\n";
-  return 0;
 }
 
 }  // namespace lutex

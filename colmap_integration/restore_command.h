@@ -1,8 +1,20 @@
 #pragma once
 
+#include <ostream>
+
+#include "colmap_integration/option_parser.h"
+#include "colmap_integration/restore_workspace.h"
+
 namespace lutex {
 
-// `lutex restore --workspace W --mesh M --lut L [--output DIR]`: parses options, runs RestoreWorkspace.
+// `lutex restore`: parses the options and calls RestoreWorkspace (restore_workspace.h).
 int RunRestoreCommand(int argc, char** argv);
+
+// Registers how to restore: the options of `lutex restore` except --workspace, --mesh, --lut, --coverage,
+// --output, --input-encoding and --num-threads (which `lutex run` sets from its own).
+void AddRestoreStageOptions(OptionParser& parser, RestoreOptions* options);
+
+// The lines `lutex restore` prints when done.
+void PrintRestoreSummary(std::ostream& out, const RestoreSummary& summary);
 
 }  // namespace lutex

@@ -4,6 +4,7 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "colmap_integration/confidence_map_io.h"
 #include "colmap_integration/images_by_camera.h"
@@ -20,21 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Where the restored image goes: same name, but PNG (or EXR) when the encoding needs it.
-fs::path RestoredPath(const fs::path& output, const std::string& name, ImageEncoding encoding) {
-  fs::path path = output / name;
-  const std::string extension = path.extension().string();
-  if (encoding == ImageEncoding::kFloat) {
-    path.replace_extension(".exr");
-  } else if (encoding == ImageEncoding::kLinear16 && extension != ".png" && extension != ".tif" && extension != ".tiff") {
-    path.replace_extension(".png");
-  }
-  return path;
-}
-
 // The coverage LUT to use, or empty; an explicit one must exist and match the LUT's grid.
 fs::path CoveragePath(const RestoreOptions& options) {
-  if (!options.use_coverage) return {};
+  if (options.ignore_coverage) return {};
   if (!options.coverage.empty()) return options.coverage;
   const fs::path beside = options.lut.parent_path() / "coverage.lut";
   return fs::exists(beside) ? beside : fs::path();
@@ -49,6 +38,25 @@ void CheckSameGrid(const FrustumLut& lut, const fs::path& lut_path, const Frustu
 }
 
 }  // namespace
+
+fs::path RestoredImagePath(const fs::path& output, const std::string& name, ImageEncoding encoding) {
+  fs::path path = output / name;
+  const std::string extension = path.extension().string();
+  if (encoding == ImageEncoding::kFloat) {
+    path.replace_extension(".exr");
+  } else if (encoding == ImageEncoding::kLinear16 && extension != ".png" && extension != ".tif" && extension != ".tiff") {
+    path.replace_extension(".png");
+  }
+  return path;
+}
+
+fs::path FindRestoredImage(const fs::path& folder, const std::string& name) {
+  for (const ImageEncoding encoding : {ImageEncoding::kSrgb8, ImageEncoding::kLinear16, ImageEncoding::kFloat}) {
+    const fs::path path = RestoredImagePath(folder, name, encoding);
+    if (fs::exists(path)) return path;
+  }
+  return {};
+}
 
 void RestoreOptions::Check() const {
   if (workspace.empty()) throw std::invalid_argument("--workspace is required");
@@ -94,10 +102,16 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
   summary.output = options.output.empty() ? workspace.OutputDir() / "restored" : options.output;
   summary.confidence_output = summary.output;
   summary.confidence_output += "_confidence";
+  const auto outputs_of = [&](const Image& image) {
+    return std::vector<fs::path>{RestoredImagePath(summary.output, image.name, output_encoding),
+                                 ConfidenceMapPath(summary.confidence_output, image.name)};
+  };
+  const SparseModel todo = options.skip_done ? WithoutDoneImages(model, outputs_of) : model;
+  summary.num_skipped = model.images.size() - todo.images.size();
   double confidence_sum = 0.0;
   std::size_t surface_pixels = 0;
   std::mutex summary_mutex;
-  ForEachImageWithRays(model, options.num_threads, "restore", [&](const Image& image, const CameraRays& rays) {
+  ForEachImageWithRays(todo, options.num_threads, "restore", [&](const Image& image, const CameraRays& rays) {
     const fs::path input = workspace.images_dir / image.name;
     const cv::Mat observed = ReadLinearImage(input, options.input_encoding);
     if (observed.cols != rays.width() || observed.rows != rays.height()) {
@@ -107,8 +121,9 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
     }
     const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
     const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr);
-    WriteLinearImage(restored.albedo, RestoredPath(summary.output, image.name, output_encoding), output_encoding);
-    WriteConfidenceMap(restored.confidence, ConfidenceMapPath(summary.confidence_output, image.name));
+    const std::vector<fs::path> outputs = outputs_of(image);
+    WriteLinearImage(restored.albedo, outputs[0], output_encoding);
+    WriteConfidenceMap(restored.confidence, outputs[1]);
     const int surfaces = cv::countNonZero(maps.depth == maps.depth);
     const cv::Scalar total = cv::sum(restored.confidence);
     std::lock_guard<std::mutex> lock(summary_mutex);

@@ -27,9 +27,9 @@ struct RestoreOptions {
   std::filesystem::path lut;
   // Per-node data coverage of the LUT (lutex calibrate writes it as coverage.lut beside the LUT); it
   // lowers the confidence where no calibration data constrained the LUT. Empty: coverage.lut beside the
-  // LUT when it exists, else every node is trusted. `use_coverage` false ignores coverage altogether.
+  // LUT when it exists, else every node is trusted. `ignore_coverage` ignores coverage altogether.
   std::filesystem::path coverage;
-  bool use_coverage = true;
+  bool ignore_coverage = false;
   // Empty: W/lutex/restored.
   std::filesystem::path output;
   // How the input images are encoded (the default, 8-bit sRGB, is what cameras' JPEGs are).
@@ -38,6 +38,9 @@ struct RestoreOptions {
   std::string output_encoding = "same";
   RestorationOptions restoration;
   int num_threads = 0;
+  // Leave images alone whose restored image and confidence map both exist (lutex run resumes so; files
+  // are written under temporary names and renamed, so an existing one is whole).
+  bool skip_done = false;
 
   void Check() const;
 };
@@ -46,10 +49,20 @@ struct RestoreSummary {
   std::filesystem::path output;
   std::filesystem::path coverage;  // the coverage LUT used; empty when none
   std::filesystem::path confidence_output;
-  std::size_t num_images = 0;
-  double mean_confidence = 0.0;  // over pixels with a surface, all channels
+  std::size_t num_images = 0;   // restored now
+  std::size_t num_skipped = 0;  // already done (skip_done)
+  double mean_confidence = 0.0;  // over pixels with a surface, all channels, of the images restored now
   double seconds = 0.0;
 };
+
+// Where RestoreWorkspace writes the restored image of the model's image `name`: OUTPUT/NAME, but .exr for
+// float output and .png for 16-bit output whose name's extension cannot hold it (e.g. .jpg).
+std::filesystem::path RestoredImagePath(const std::filesystem::path& output, const std::string& name,
+                                        ImageEncoding encoding);
+
+// The restored image of `name` in `folder`, whatever the output encoding was (as named, or renamed to .png
+// or .exr as above); empty when there is none.
+std::filesystem::path FindRestoredImage(const std::filesystem::path& folder, const std::string& name);
 
 // Reads and validates the model, mesh, LUT and the existence of every image before writing anything.
 RestoreSummary RestoreWorkspace(const RestoreOptions& options);

@@ -2,17 +2,14 @@
 
 #include <iomanip>
 #include <iostream>
+#include <stdexcept>
 
-#include "colmap_integration/option_parser.h"
-#include "colmap_integration/texture_workspace.h"
+#include "colmap_integration/image_encoding_option.h"
 
 namespace lutex {
 
 int RunTextureCommand(int argc, char** argv) {
   TextureOptions options;
-  std::string image_encoding = "srgb8", page_encoding = "srgb8", blend = "fuse";
-  double memory_limit_mib = static_cast<double>(options.baking.fusion.memory_limit_bytes >> 20);
-  bool no_confidence = false;
   OptionParser parser(
       "lutex texture --workspace W --mesh M [--images DIR] [--texel-size S] [--output model.glb]",
       "Bakes one albedo texture for the mesh M from the registered images of the COLMAP workspace W and\n"
@@ -29,35 +26,49 @@ int RunTextureCommand(int argc, char** argv) {
   parser.AddPath("workspace", &options.workspace, "COLMAP workspace (images/, sparse/0 or sparse/).", true);
   parser.AddPath("mesh", &options.mesh, "Mesh in the model's world frame.", true);
   parser.AddPath("images", &options.images, "Images to texture from (default W/lutex/restored, else W/images).");
-  parser.AddString("image-encoding", &image_encoding, "Encoding of those images: srgb8 (default), linear16, float.");
+  AddImageEncodingOption(parser, "image-encoding", &options.image_encoding, "How those images are encoded:");
   parser.AddPath("confidence", &options.confidence, "Confidence maps (default DIR_confidence when present).");
-  parser.AddFlag("no-confidence", &no_confidence, "Trust every pixel equally.");
   parser.AddPath("output", &options.output, "Textured model: .glb (default W/lutex/model.glb), .gltf, .obj or .ply.");
-  parser.AddDouble("texel-size", &options.baking.charts.texel_size,
-                   "Texel size in scene units (e.g. 0.001 = 1 mm if the model is in metres), the same at any\n"
-                   "range; 0 (default) = the native resolution of each chart's view.");
-  parser.AddString("blend", &blend, "fuse (default: robust weighted fusion of all views) or single (one view per face).");
-  parser.AddDouble("view-smoothness", &options.baking.selection.smoothness,
-                   "Potts weight between adjacent faces from different views (default 0.5; 0 = best view per face).");
-  parser.AddInt("max-views-per-face", &options.baking.visibility.max_views_per_face,
-                "Best views kept per face for selection and fusion (default 8).");
-  parser.AddInt("max-page-size", &options.baking.charts.max_size, "Largest atlas page side in texels (default 8192).");
-  parser.AddInt("padding", &options.baking.charts.padding, "Texels around each chart (default 4).");
-  parser.AddDouble("memory-limit", &memory_limit_mib,
-                   "MiB for the per-texel sample buffers of one pass over the images (default 2048); a larger\n"
-                   "atlas is done in several passes.");
-  parser.AddString("page-encoding", &page_encoding, "OBJ/PLY pages: srgb8 (default) or linear16 (glTF is always srgb8).");
+  AddImageEncodingOption(parser, "page-encoding", &options.page_encoding,
+                         "OBJ/PLY pages (glTF pages are always srgb8):");
   parser.AddInt("num-threads", &options.baking.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
+  AddTextureStageOptions(parser, &options);
   if (!parser.Parse(argc, argv, 2)) return 0;
-  options.image_encoding = ParseImageEncoding(image_encoding);
-  options.page_encoding = ParseImageEncoding(page_encoding);
-  options.baking.fusion.blend = ParseTexelBlend(blend);
-  options.use_confidence = !no_confidence;
-  if (!(memory_limit_mib >= 1.0)) throw std::invalid_argument("--memory-limit must be at least 1 MiB");
-  options.baking.fusion.memory_limit_bytes = static_cast<std::size_t>(memory_limit_mib * 1024.0 * 1024.0);
-  const TextureSummary summary = TextureWorkspace(options);
+  PrintTextureSummary(std::cout, TextureWorkspace(options));
+  return 0;
+}
+
+void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
+  TextureBakingOptions& baking = options->baking;
+  parser.AddFlag("no-confidence", &options->ignore_confidence, "Trust every pixel equally.");
+  parser.AddDouble("texel-size", &baking.charts.texel_size,
+                   "Texel size in scene units (e.g. 0.001 = 1 mm if the model is in metres), the same at any\n"
+                   "      range; 0 (default) = the native resolution of each chart's view.");
+  parser.AddCustom("blend", "fuse", "fuse (robust weighted fusion of all views) or single (one view per face).",
+                   [&baking](const std::string& text) { baking.fusion.blend = ParseTexelBlend(text); });
+  parser.AddDouble("view-smoothness", &baking.selection.smoothness,
+                   "Potts weight between adjacent faces from different views (0 = best view per face).");
+  parser.AddInt("max-views-per-face", &baking.visibility.max_views_per_face,
+                "Best views kept per face for selection and fusion.");
+  parser.AddInt("max-page-size", &baking.charts.max_size, "Largest atlas page side in texels.");
+  parser.AddInt("padding", &baking.charts.padding, "Texels around each chart.");
+  parser.AddCustom("memory-limit", std::to_string(baking.fusion.memory_limit_bytes >> 20),
+                   "MiB for the per-texel sample buffers of one pass over the images; a larger atlas is done in\n"
+                   "      several passes.",
+                   [&baking](const std::string& text) {
+                     double mib = 0.0;
+                     try {
+                       mib = std::stod(text);
+                     } catch (const std::exception&) {
+                     }
+                     if (!(mib >= 1.0)) throw std::invalid_argument("--memory-limit must be at least 1 MiB, not '" + text + "'");
+                     baking.fusion.memory_limit_bytes = static_cast<std::size_t>(mib * 1024.0 * 1024.0);
+                   });
+}
+
+void PrintTextureSummary(std::ostream& out, const TextureSummary& summary) {
   const TextureBakingSummary& baking = summary.baking;
-  std::cout << std::fixed << std::setprecision(1) << "texture: " << baking.num_textured_faces << " of "
+  out << std::fixed << std::setprecision(1) << "texture: " << baking.num_textured_faces << " of "
             << baking.num_faces << " faces textured from " << baking.num_views << " images in " << summary.seconds
             << " s\n"
             << "  charts: " << baking.num_charts << " on " << baking.num_pages << " page(s), "
@@ -83,8 +94,7 @@ int RunTextureCommand(int argc, char** argv) {
             << "  images: " << summary.images.string() << "\n"
             << "  confidence: " << (summary.confidence.empty() ? std::string("not used") : summary.confidence.string())
             << "\n";
-  for (const auto& path : summary.written) std::cout << "  wrote " << path.string() << "\n";
-  return 0;
+  for (const auto& path : summary.written) out << "  wrote " << path.string() << "\n";
 }
 
 }  // namespace lutex

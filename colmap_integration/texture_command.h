@@ -1,8 +1,20 @@
 #pragma once
 
+#include <ostream>
+
+#include "colmap_integration/option_parser.h"
+#include "colmap_integration/texture_workspace.h"
+
 namespace lutex {
 
 // `lutex texture`: parses the options and calls TextureWorkspace (texture_workspace.h).
 int RunTextureCommand(int argc, char** argv);
+
+// Registers how to bake: the options of `lutex texture` except --workspace, --mesh, --images,
+// --image-encoding, --confidence, --output, --page-encoding and --num-threads (which `lutex run` sets).
+void AddTextureStageOptions(OptionParser& parser, TextureOptions* options);
+
+// The lines `lutex texture` prints when done.
+void PrintTextureSummary(std::ostream& out, const TextureSummary& summary);
 
 }  // namespace lutex

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "colmap_integration/confidence_map_io.h"
+#include "colmap_integration/restore_workspace.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/workspace.h"
 #include "lib/geometry/mesh_io.h"
@@ -13,23 +14,6 @@
 namespace lutex {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// The image of `name` in `folder`: as named, or with the extension lutex restore gives 16-bit and float
-// output. Empty when none exists.
-fs::path FindImage(const fs::path& folder, const std::string& name) {
-  fs::path path = folder / name;
-  if (fs::exists(path)) return path;
-  for (const char* extension : {".png", ".exr"}) {
-    fs::path renamed = path;
-    renamed.replace_extension(extension);
-    if (fs::exists(renamed)) return renamed;
-  }
-  return {};
-}
-
-}  // namespace
 
 void TextureOptions::Check() const {
   if (workspace.empty()) throw std::invalid_argument("--workspace is required");
@@ -56,7 +40,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
     }
   }
   if (!fs::is_directory(summary.images)) throw std::runtime_error(summary.images.string() + ": no such folder");
-  if (options.use_confidence) {
+  if (!options.ignore_confidence) {
     summary.confidence = options.confidence;
     if (summary.confidence.empty()) {
       fs::path beside = summary.images;
@@ -69,7 +53,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
   std::vector<TextureView> views;
   std::vector<fs::path> image_paths, confidence_paths;
   for (const auto& [id, image] : model.images) {
-    const fs::path path = FindImage(summary.images, image.name);
+    const fs::path path = FindRestoredImage(summary.images, image.name);
     if (path.empty()) {
       throw std::runtime_error((summary.images / image.name).string() + ": no such image (image " +
                                std::to_string(id) + " of the model)");

@@ -27,7 +27,7 @@ struct TextureOptions {
   std::filesystem::path mesh;
   std::filesystem::path images;      // empty: see above
   std::filesystem::path confidence;  // empty: IMAGES_confidence when it exists
-  bool use_confidence = true;
+  bool ignore_confidence = false;  // trust every pixel equally
   std::filesystem::path output;      // empty: W/lutex/model.glb
   ImageEncoding image_encoding = ImageEncoding::kSrgb8;
   // Encoding of OBJ/PLY pages (glTF pages are always 8-bit sRGB).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything lutex needs to build and test on Debian 12 (bookworm): C++ libraries and tools from
-# Debian's archive, and the Khronos glTF-Validator (which checks lutex's GLB output) from the npm registry,
-# pinned by scripts/gltf_validator/package-lock.json. Idempotent: what is present is left as it is.
+# Debian's archive (Chromium renders lutex's HTML report in a test), and the Khronos glTF-Validator (which
+# checks lutex's GLB output) from the npm registry, pinned by scripts/gltf_validator/package-lock.json. Idempotent: what is present is left as it is.
 # Run as root (or through sudo).
 set -euo pipefail
 
@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev
   colmap
   python3-numpy python3-opencv
+  chromium
 )
 
 missing=()

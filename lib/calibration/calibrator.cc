@@ -345,6 +345,7 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
     const Eigen::Vector3d predicted =
         value.alpha.cwiseProduct(observation.albedo) * observation.cos_theta + value.beta;
     squared += (predicted - observation.intensity).cwiseAbs2();
+    result.summary.known_color_residuals.Add(predicted - observation.intensity);
   }
   if (!observations.known_colors.empty()) {
     result.summary.known_color_rms = (squared / static_cast<double>(observations.known_colors.size())).cwiseSqrt();
@@ -359,6 +360,7 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
       }
     }
     const Eigen::Vector3d difference = ViewAlbedo(result.lut, observation.first) - ViewAlbedo(result.lut, observation.second);
+    result.summary.correspondence_albedo_differences.Add(difference);
     for (int c = 0; c < 3; ++c) {
       if (!std::isfinite(difference[c])) continue;
       albedo_squared[c] += difference[c] * difference[c];
@@ -380,6 +382,7 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
           result.lut.Lookup(observation.pixel.x(), observation.pixel.y(), options.grid.SlabDepth(k)).beta;
       result.summary.pure_water_max_violation =
           result.summary.pure_water_max_violation.cwiseMax(beta - observation.intensity);
+      result.summary.pure_water_excess.Add(beta - observation.intensity);
     }
   }
   result.summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

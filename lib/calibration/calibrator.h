@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "lib/calibration/observations.h"
+#include "lib/calibration/residual_histogram.h"
 #include "lib/lut/frustum_lut.h"
 
 namespace lutex {
@@ -78,6 +79,12 @@ struct CalibrationSummary {
   // Fraction of the finest LUT's nodes constrained by data (see coverage).
   double covered_fraction = 0.0;
   double seconds = 0.0;
+  // Distributions after the solve: known-colour residuals (predicted - observed intensity), albedo
+  // differences between the two views of a correspondence, and pure-water excess (beta - I_pw at every
+  // slab along the ray; negative = bound kept).
+  ResidualHistogram known_color_residuals{0.05, 40};
+  ResidualHistogram correspondence_albedo_differences{0.2, 40};
+  ResidualHistogram pure_water_excess{0.01, 40};
 };
 
 struct CalibrationResult {

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace lutex {
 namespace {
@@ -37,6 +38,20 @@ void AtomicOutputFile::Commit() {
   }
   std::filesystem::rename(temporary_path_, destination_);
   committed_ = true;
+}
+
+std::size_t RemoveStaleTemporaries(const std::filesystem::path& folder) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(folder, error)) return 0;
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos) {
+      stale.push_back(entry.path());
+    }
+  }
+  for (const auto& path : stale) std::filesystem::remove(path, error);
+  return stale.size();
 }
 
 }  // namespace lutex

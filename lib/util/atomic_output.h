@@ -4,6 +4,7 @@
 // renames it into place (atomic on POSIX within one file system). An uncommitted temporary is removed
 // by the destructor, so an exception during writing leaves no partial file and the old file intact.
 
+#include <cstddef>
 #include <filesystem>
 
 namespace lutex {
@@ -28,5 +29,9 @@ class AtomicOutputFile {
   std::filesystem::path temporary_path_;
   bool committed_ = false;
 };
+
+// Removes, under `folder` (recursively), the temporaries of writers that were killed before they could
+// commit or clean up (".NAME.tmpPID_N.EXT"); returns how many. A missing folder has none.
+std::size_t RemoveStaleTemporaries(const std::filesystem::path& folder);
 
 }  // namespace lutex

@@ -1,0 +1,290 @@
+// `lutex run` end to end on a small version of the bundled example (examples/dive: a survey of a synthetic
+// seafloor, frames of a colour board and of pure water, all made by lutex simulate):
+//   - the restored images match the simulator's true albedo, the GLB validates, the report is written and
+//     headless Chromium renders it;
+//   - a second run finds everything up to date and rewrites nothing; a texture option redoes the texture only;
+//   - a run killed (SIGKILL) inside calibrate, inside restore and inside texture, then started again, ends
+//     with outputs identical, byte for byte, to those of the uninterrupted run.
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "colmap_integration/simulate_workspace.h"
+#include "lib/image/image_io.h"
+#include "tests/support/gltf_validator.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+
+extern char** environ;
+
+namespace lutex {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kExample = fs::path(LUTEX_SOURCE_DIR) / "examples";
+
+// The example's scene `source` at 320 x 240 (and the survey shortened), written to `destination`.
+void WriteSmallScene(const fs::path& source, const fs::path& destination, std::size_t keep_every) {
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(source));
+  scene["camera"]["width"] = 320;
+  scene["camera"]["height"] = 240;
+  scene["camera"]["params"] = {160, 160, 160, 120};
+  if (scene.contains("mesh") && scene["mesh"].is_string()) {
+    scene["mesh"] = (source.parent_path() / scene["mesh"].get<std::string>()).string();
+  }
+  if (scene.contains("survey")) {
+    scene["survey"]["lines"] = 2;
+    scene["survey"]["images_per_line"] = 5;
+  }
+  if (scene.contains("poses")) {
+    nlohmann::json kept = nlohmann::json::array();
+    for (std::size_t i = 0; i < scene["poses"].size(); i += keep_every) kept.push_back(scene["poses"][i]);
+    scene["poses"] = kept;
+  }
+  std::ofstream(destination) << scene.dump(1);
+}
+
+fs::path Simulate(const fs::path& scene, const fs::path& output) {
+  SimulateOptions options;
+  options.scene = scene;
+  options.output = output;
+  SimulateWorkspace(options);
+  return output;
+}
+
+std::string ReadBytes(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+}
+
+// Every file under `folder` (relative path -> bytes), without what holds times: the run records, the
+// report, and the solve time in the calibration summary.
+std::map<std::string, std::string> Outputs(const fs::path& folder) {
+  std::map<std::string, std::string> outputs;
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    const std::string relative = fs::relative(entry.path(), folder).string();
+    if (!entry.is_regular_file() || relative.rfind("run/", 0) == 0 || relative.rfind("report/", 0) == 0) continue;
+    if (entry.path().filename() == "calibration_summary.json") {
+      nlohmann::json summary = nlohmann::json::parse(std::ifstream(entry.path()));
+      summary.erase("seconds");
+      outputs[relative] = summary.dump();
+    } else {
+      outputs[relative] = ReadBytes(entry.path());
+    }
+  }
+  return outputs;
+}
+
+class RunTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    data_ = new testing::TempDir();
+    const fs::path root = data_->path();
+    WriteSmallScene(kExample / "scenes" / "clear_two_lights.json", root / "survey.json", 1);
+    WriteSmallScene(kExample / "dive" / "board.json", root / "board.json", 3);
+    WriteSmallScene(kExample / "dive" / "purewater.json", root / "purewater.json", 2);
+    Simulate(root / "survey.json", root / "survey");
+    Simulate(root / "board.json", root / "board");
+    Simulate(root / "purewater.json", root / "purewater");
+  }
+  static void TearDownTestSuite() {
+    delete data_;
+    data_ = nullptr;
+  }
+
+  // A fresh copy of the simulated survey workspace (images, model, mesh) in `folder`.
+  static fs::path CopyOfSurvey(const fs::path& folder) {
+    fs::copy(data_->path() / "survey", folder, fs::copy_options::recursive);
+    return folder;
+  }
+
+  static std::vector<std::string> RunArguments(const fs::path& workspace) {
+    const fs::path root = data_->path();
+    return {LUTEX_BINARY, "run", "--workspace", workspace.string(), "--mesh", (workspace / "scene" / "mesh.ply").string(),
+            "--targets", (kExample / "dive" / "board_targets.json").string(),
+            "--targets-workspace", (root / "board").string(),
+            "--targets-mesh", (root / "board" / "scene" / "mesh.ply").string(),
+            "--pure-water", (root / "purewater").string(),
+            "--lut-nx", "20", "--lut-ny", "15", "--lut-nz", "8", "--num-threads", "2", "--log-level", "warning"};
+  }
+
+  static testing::CommandResult Run(const fs::path& workspace, const std::string& extra = "") {
+    std::string command;
+    for (const std::string& argument : RunArguments(workspace)) command += "'" + argument + "' ";
+    return testing::RunCommand(command + extra);
+  }
+
+  static testing::TempDir* data_;
+};
+
+testing::TempDir* RunTest::data_ = nullptr;
+
+// Starts `lutex run`, waits until `ready` says the stage is under way, kills the process with SIGKILL.
+// Returns true when the kill landed (the run had not finished by itself).
+bool KillRunWhen(const std::vector<std::string>& arguments, const std::function<bool()>& ready) {
+  std::vector<char*> argv;
+  for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;  // finished before the stage was reached
+    if (ready()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+bool StageStarted(const fs::path& workspace, const std::string& stage) {
+  return ReadBytes(workspace / "lutex" / "run" / (stage + ".json")).find("\"state\": \"started\"") != std::string::npos;
+}
+
+std::size_t FilesIn(const fs::path& folder) {
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) return 0;
+  return static_cast<std::size_t>(std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
+}
+
+TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
+  testing::TempDir dir;
+  const fs::path workspace = CopyOfSurvey(dir.path() / "W");
+  const testing::CommandResult first = Run(workspace);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_NE(first.output.find("[calibrate: done"), std::string::npos) << first.output;
+  EXPECT_NE(first.output.find("report:"), std::string::npos) << first.output;
+
+  // Restored albedo against the simulator's truth, over pixels with a surface.
+  double error_sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& entry : fs::directory_iterator(workspace / "ground_truth" / "albedo")) {
+    const cv::Mat truth = ReadLinearImage(entry.path(), ImageEncoding::kLinear16);
+    const cv::Mat restored = ReadLinearImage(workspace / "lutex" / "restored" / entry.path().filename(), ImageEncoding::kSrgb8);
+    for (int y = 0; y < truth.rows; ++y) {
+      for (int x = 0; x < truth.cols; ++x) {
+        const cv::Vec3f t = truth.at<cv::Vec3f>(y, x);
+        if (t[0] + t[1] + t[2] <= 0.0f) continue;
+        const cv::Vec3f r = restored.at<cv::Vec3f>(y, x);
+        for (int c = 0; c < 3; ++c) error_sum += std::abs(double(r[c]) - double(t[c]));
+        count += 3;
+      }
+    }
+  }
+  ASSERT_GT(count, 0u);
+  const double mae = 100.0 * error_sum / double(count);
+  std::cout << "lutex run on the small example: restored albedo MAE " << mae << " pp\n";
+  EXPECT_LT(mae, 5.0);
+
+  const testing::GltfValidation validation = testing::ValidateGltf(workspace / "lutex" / "model.glb");
+  if (validation.ran) {
+    EXPECT_TRUE(validation.valid) << validation.output;
+  }
+  const std::string report = ReadBytes(workspace / "lutex" / "report" / "index.html");
+  for (const char* part : {"<h2>Run</h2>", "<h2>Calibration</h2>", "The LUT", "<h2>Restoration</h2>", "<h2>Texture</h2>",
+                           "data:image/png;base64,", "data:image/jpeg;base64,", "<svg"}) {
+    EXPECT_NE(report.find(part), std::string::npos) << part;
+  }
+  for (const char* fetch : {"src=\"http", "href=\"http", "url(http", "<script"}) {
+    EXPECT_EQ(report.find(fetch), std::string::npos) << "the report must not need the network: " << fetch;
+  }
+
+  // In a real browser: headless Chromium renders the page with every picture (no network).
+  if (!testing::HaveProgram("chromium")) {
+    std::cout << "chromium is not installed (scripts/install_dependencies.sh installs it): report not rendered\n";
+  } else {
+    const fs::path screenshot = dir.path() / "report.png";
+    const testing::CommandResult browser = testing::RunCommand(
+        "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage "
+        "--disable-background-networking --no-first-run --hide-scrollbars --window-size=1400,3000 --screenshot=" +
+        screenshot.string() + " file://" + (workspace / "lutex" / "report" / "index.html").string());
+    ASSERT_TRUE(fs::exists(screenshot)) << browser.output;
+    const cv::Mat picture = cv::imread(screenshot.string(), cv::IMREAD_COLOR);
+    ASSERT_EQ(picture.cols, 1400);
+    ASSERT_EQ(picture.rows, 3000);
+    // Not a blank or error page: the LUT's false colours and the photographs cover a good part of it.
+    cv::Mat hsv;
+    cv::cvtColor(picture, hsv, cv::COLOR_BGR2HSV);
+    std::vector<cv::Mat> channels;
+    cv::split(hsv, channels);
+    const double coloured = double(cv::countNonZero(channels[1] > 80)) / double(picture.total());
+    std::cout << "report screenshot: " << 100.0 * coloured << " % of the first 3000 px in colour\n";
+    EXPECT_GT(coloured, 0.1);
+  }
+
+  // Nothing changed: nothing is redone or rewritten.
+  const auto model_time = fs::last_write_time(workspace / "lutex" / "model.glb");
+  const auto lut_time = fs::last_write_time(workspace / "lutex" / "calibration" / "lut.lut");
+  const testing::CommandResult second = Run(workspace);
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  for (const char* stage : {"calibrate", "restore", "texture"}) {
+    EXPECT_NE(second.output.find(std::string("[") + stage + ": up to date"), std::string::npos) << second.output;
+  }
+  EXPECT_EQ(fs::last_write_time(workspace / "lutex" / "model.glb"), model_time);
+  EXPECT_EQ(fs::last_write_time(workspace / "lutex" / "calibration" / "lut.lut"), lut_time);
+
+  // A texture option redoes the texture only.
+  const testing::CommandResult third = Run(workspace, "--blend single");
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_NE(third.output.find("[calibrate: up to date"), std::string::npos) << third.output;
+  EXPECT_NE(third.output.find("[restore: up to date"), std::string::npos) << third.output;
+  EXPECT_NE(third.output.find("[texture: done"), std::string::npos) << third.output;
+}
+
+TEST_F(RunTest, KilledInEveryStageAndStartedAgainEndsWithTheSameOutputs) {
+  testing::TempDir dir;
+  const fs::path reference = CopyOfSurvey(dir.path() / "reference");
+  const fs::path killed = CopyOfSurvey(dir.path() / "killed");
+  ASSERT_EQ(Run(reference).exit_code, 0);
+
+  const std::vector<std::string> arguments = RunArguments(killed);
+  EXPECT_TRUE(KillRunWhen(arguments, [&] {
+    return StageStarted(killed, "calibrate");
+  })) << "the run should have been killed while calibrating";
+  EXPECT_TRUE(KillRunWhen(arguments, [&] {
+    return StageStarted(killed, "restore") && FilesIn(killed / "lutex" / "restored") >= 3;
+  })) << "the run should have been killed while restoring";
+  const std::size_t restored_before = FilesIn(killed / "lutex" / "restored");
+  KillRunWhen(arguments, [&] { return StageStarted(killed, "texture"); });
+
+  const testing::CommandResult resumed = Run(killed);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_LT(restored_before, 10u) << "restore should have been cut off before it wrote all images";
+
+  const auto expected = Outputs(reference / "lutex");
+  const auto actual = Outputs(killed / "lutex");
+  ASSERT_EQ(expected.size(), actual.size());
+  for (const auto& [name, bytes] : expected) {
+    ASSERT_EQ(actual.count(name), 1u) << name;
+    EXPECT_TRUE(actual.at(name) == bytes) << name << " differs from the uninterrupted run's";
+  }
+}
+
+}  // namespace
+}  // namespace lutex
