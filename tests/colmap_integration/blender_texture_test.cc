@@ -20,6 +20,7 @@
 #include "lib/image/image_io.h"
 #include "lib/raycast/raycast_scene.h"
 #include "tests/support/blender_dataset.h"
+#include "tests/support/blender_render_back.h"
 #include "tests/support/gltf_validator.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
@@ -28,59 +29,6 @@ namespace lutex {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A textured PLY as lutex texture writes it (per-corner texcoords, v up; one page) with its page.
-TexturedMesh ReadTexturedPly(const fs::path& ply) {
-  TexturedMesh textured;
-  textured.mesh = ReadMesh(ply);
-  fs::path page = ply.parent_path() / (ply.stem().string() + "_texture.png");
-  textured.pages.push_back(ReadLinearImage(page, ImageEncoding::kLinear16));
-  const float width = float(textured.pages[0].cols), height = float(textured.pages[0].rows);
-  for (const auto& corners : textured.mesh.corner_texcoords) {
-    const bool textured_face = !(corners[0].isZero() && corners[1].isZero() && corners[2].isZero());
-    textured.face_page.push_back(textured_face ? 0 : -1);
-    std::array<Eigen::Vector2f, 3> texels;
-    for (int k = 0; k < 3; ++k) texels[k] = Eigen::Vector2f(corners[k].x() * width, (1.0f - corners[k].y()) * height);
-    textured.face_corner_texels.push_back(texels);
-  }
-  return textured;
-}
-
-struct RenderBack {
-  double mae = 0.0;            // percentage points, over textured pixels and channels
-  double textured_pixels = 0;  // fraction of surface pixels whose face is textured
-};
-
-// The textured model seen through every camera of the survey against gt/albedo.
-RenderBack CompareWithGroundTruth(const fs::path& survey, const TexturedMesh& textured) {
-  const SparseModel model = ReadSparseModel(survey / "sparse" / "0");
-  const RaycastScene scene(textured.mesh);
-  const CameraRays rays(model.cameras.begin()->second);
-  GeometryMapsOptions options;
-  options.barycentrics = true;
-  double sum = 0.0;
-  std::size_t samples = 0, surface = 0, seen = 0;
-  for (const auto& [id, image] : model.images) {
-    const cv::Mat truth = ReadLinearImage(survey / "gt" / "albedo" / (fs::path(image.name).stem().string() + ".exr"),
-                                          ImageEncoding::kFloat);
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, options);
-    for (int row = 0; row < truth.rows; ++row) {
-      for (int col = 0; col < truth.cols; ++col) {
-        const int face = maps.face_id.at<int>(row, col);
-        const cv::Vec3f expected = truth.at<cv::Vec3f>(row, col);
-        if (face < 0 || expected == cv::Vec3f(0, 0, 0)) continue;
-        ++surface;
-        if (textured.face_page[face] < 0) continue;
-        ++seen;
-        const cv::Vec2f b = maps.barycentrics.at<cv::Vec2f>(row, col);
-        const Eigen::Vector3f albedo = textured.AlbedoAt(face, b[0], b[1]);
-        for (int c = 0; c < 3; ++c) sum += std::abs(albedo[c] - expected[c]);
-        samples += 3;
-      }
-    }
-  }
-  return {100.0 * sum / double(samples), double(seen) / double(surface)};
-}
 
 class BlenderTexture : public ::testing::Test {
  protected:
@@ -109,7 +57,7 @@ TEST_F(BlenderTexture, GroundTruthAlbedoBakesBackWithinTwoPercent) {
   testing::TempDir dir;
   const TextureSummary summary =
       TextureWorkspace(Texturing(survey_ / "gt" / "albedo", ImageEncoding::kFloat, dir.path() / "model.ply"));
-  const RenderBack back = CompareWithGroundTruth(survey_, ReadTexturedPly(dir.path() / "model.ply"));
+  const testing::RenderBack back = testing::CompareWithGroundTruth(survey_, testing::ReadTexturedPly(dir.path() / "model.ply"));
   std::printf("ground-truth albedo baked: %zu charts, %zu texels; rendered back MAE %.2f pp over %.1f %% of the "
               "surface pixels; seam step %.2f pp\n",
               summary.baking.num_charts, summary.baking.num_texels, back.mae, 100.0 * back.textured_pixels,
@@ -158,7 +106,7 @@ TEST_F(BlenderTexture, RestoredAndFusedTexturesAreTrueAndSeamless) {
     const char* name;
     fs::path images;
     TexelBlend blend;
-    RenderBack back;
+    testing::RenderBack back;
     double seam_step = 0.0;  // seam visibility: the step across chart borders less that inside charts, pp
   };
   std::vector<Variant> variants = {{"restored, fused", dir.path() / "restored", TexelBlend::kFuse, {}, 0.0},
@@ -168,7 +116,7 @@ TEST_F(BlenderTexture, RestoredAndFusedTexturesAreTrueAndSeamless) {
     TextureOptions options = Texturing(variant.images, ImageEncoding::kLinear16, dir.path() / "model.ply");
     options.baking.fusion.blend = variant.blend;
     const TextureSummary summary = TextureWorkspace(options);
-    variant.back = CompareWithGroundTruth(survey_, ReadTexturedPly(dir.path() / "model.ply"));
+    variant.back = testing::CompareWithGroundTruth(survey_, testing::ReadTexturedPly(dir.path() / "model.ply"));
     variant.seam_step = 100.0 * summary.baking.seams.Excess();
     std::printf("%-28s rendered back MAE %5.2f pp; colour step across %zu chart borders %.2f pp, inside charts "
                 "%.2f pp: seam %.2f pp\n",

@@ -257,6 +257,32 @@ TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
   EXPECT_NE(third.output.find("[texture: done"), std::string::npos) << third.output;
 }
 
+TEST_F(RunTest, BadInputFailsWithOneLineNamingItAndWritesNothing) {
+  testing::TempDir dir;
+  const fs::path workspace = CopyOfSurvey(dir.path() / "W");
+  std::vector<std::string> arguments = RunArguments(workspace);
+  const auto run_with = [&](const std::string& option, const std::string& value) {
+    std::string command;
+    for (std::size_t i = 0; i < arguments.size(); ++i) {
+      const bool replaced = i > 0 && arguments[i - 1] == option;
+      command += "'" + (replaced ? value : arguments[i]) + "' ";
+    }
+    return testing::RunCommand(command);
+  };
+  const testing::CommandResult no_targets = run_with("--targets", (dir.path() / "missing.json").string());
+  EXPECT_NE(no_targets.exit_code, 0);
+  EXPECT_NE(no_targets.output.find("missing.json"), std::string::npos) << no_targets.output;
+  const testing::CommandResult no_mesh = run_with("--mesh", (dir.path() / "missing.ply").string());
+  EXPECT_NE(no_mesh.exit_code, 0);
+  EXPECT_NE(no_mesh.output.find("missing.ply: no such mesh file"), std::string::npos) << no_mesh.output;
+  const testing::CommandResult nothing = testing::RunCommand(std::string(LUTEX_BINARY) + " run --workspace " +
+                                                             workspace.string() + " --mesh " +
+                                                             (workspace / "scene" / "mesh.ply").string());
+  EXPECT_NE(nothing.exit_code, 0);
+  EXPECT_NE(nothing.output.find("nothing to calibrate from"), std::string::npos) << nothing.output;
+  EXPECT_FALSE(fs::exists(workspace / "lutex"));
+}
+
 TEST_F(RunTest, KilledInEveryStageAndStartedAgainEndsWithTheSameOutputs) {
   testing::TempDir dir;
   const fs::path reference = CopyOfSurvey(dir.path() / "reference");
