@@ -28,7 +28,10 @@ namespace lutex {
 
 struct SuperpixelOptions {
   int count = 300;  // superpixels per image (paper: 300)
-  int working_width = 1024;
+  // Wider images are segmented (and their samples' colours taken) at this width: SLIC's cost grows with
+  // the pixels, while 300 superpixels of a 640-px-wide image still span ~30 px each, plenty to find
+  // homogeneous patches. Footprints and points are mapped back to full resolution.
+  int working_width = 640;
   double saturation_level = 0.98;
   double min_cos_theta = 0.3;
   double max_relative_depth_range = 0.03;
