@@ -1,7 +1,10 @@
 #include "colmap_integration/calibrate_workspace.h"
 
+#include <algorithm>
+#include <cctype>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +13,7 @@
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/survey_correspondences.h"
 #include "colmap_integration/workspace.h"
+#include "lib/calibration/chessboard_target.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/targets.h"
 #include "lib/geometry/mesh_io.h"
@@ -19,6 +23,8 @@
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/file_streams.h"
 #include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
+#include "lib/util/progress.h"
 
 namespace lutex {
 
@@ -93,6 +99,59 @@ std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions
   return observations;
 }
 
+// Known colours from the chessboard in every image of options.chessboard_images (sorted by name; images
+// where OpenCV does not find it are skipped with a warning).
+std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions& options, const Camera& camera,
+                                                          CalibrateSummary* summary) {
+  const ChessboardSpec spec = ReadChessboardSpec(options.chessboard);
+  if (!fs::is_directory(options.chessboard_images)) {
+    throw std::runtime_error(options.chessboard_images.string() + ": no such folder");
+  }
+  std::vector<fs::path> paths;
+  for (const auto& entry : fs::directory_iterator(options.chessboard_images)) {
+    std::string extension = entry.path().extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (entry.is_regular_file() && (extension == ".png" || extension == ".jpg" || extension == ".jpeg" ||
+                                    extension == ".tif" || extension == ".tiff" || extension == ".exr")) {
+      paths.push_back(entry.path());
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  if (paths.empty()) throw std::runtime_error(options.chessboard_images.string() + ": no images");
+  KnownColorSamplingOptions sampling = options.sampling;
+  sampling.shading_light_in_cam = options.shading_light_in_cam;
+  const CameraRays rays(camera, options.num_threads);
+  std::vector<std::vector<KnownColorObservation>> per_image(paths.size());
+  ProgressReporter progress("chessboard images", paths.size(), "images");
+  ParallelFor(paths.size(), options.num_threads, [&](std::size_t i) {
+    const cv::Mat image = ReadLinearImage(paths[i], options.input_encoding);
+    if (image.cols != static_cast<int>(camera.width) || image.rows != static_cast<int>(camera.height)) {
+      throw std::runtime_error(paths[i].string() + ": the image is " + std::to_string(image.cols) + "x" +
+                               std::to_string(image.rows) + " but the camera is " + std::to_string(camera.width) + "x" +
+                               std::to_string(camera.height));
+    }
+    const std::optional<ChessboardView> view = FindChessboard(image, camera, spec);
+    if (!view) {
+      LogWarning() << paths[i].string() << ": no chessboard of " << spec.inner_corners_x << " x " << spec.inner_corners_y
+                   << " inner corners found; the image is skipped";
+    } else {
+      const ChessboardMaps maps = RenderChessboard(spec, *view, rays, image);
+      per_image[i] = SampleKnownColors(image, maps.known_albedo, maps.maps, rays, sampling);
+    }
+    progress.Advance();
+  });
+  std::vector<KnownColorObservation> observations;
+  for (const auto& list : per_image) {
+    summary->num_chessboard_images += list.empty() ? 0 : 1;
+    observations.insert(observations.end(), list.begin(), list.end());
+  }
+  if (observations.empty()) {
+    throw std::runtime_error(options.chessboard_images.string() + ": the chessboard of " + options.chessboard.string() +
+                             " was found in none of the images");
+  }
+  return observations;
+}
+
 // Pure-water bounds from the images of options.pure_water, screened for surfaces in view (skipped with a
 // warning naming the image and why).
 std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& options, const Camera& camera,
@@ -133,14 +192,18 @@ std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& 
 
 void CalibrateOptions::Check() const {
   if (workspace.empty() || mesh.empty()) throw std::invalid_argument("--workspace and --mesh are required");
-  if (targets.empty() && !correspondences) {
-    throw std::invalid_argument("give --targets (known colours), --correspondences (self-calibration), or both");
+  if (targets.empty() && chessboard.empty() && !correspondences) {
+    throw std::invalid_argument(
+        "give --targets or --chessboard (known colours), --correspondences (self-calibration), or both");
+  }
+  if (chessboard.empty() != chessboard_images.empty()) {
+    throw std::invalid_argument("--chessboard and --chessboard-images go together");
   }
   if (targets_workspace.empty() != targets_mesh.empty()) {
     throw std::invalid_argument("--targets-workspace and --targets-mesh go together");
   }
   if (!targets_workspace.empty() && targets.empty()) throw std::invalid_argument("--targets-workspace needs --targets");
-  if (targets.empty() && !(grey_world_albedo.minCoeff() > 0.0)) {
+  if (targets.empty() && chessboard.empty() && !(grey_world_albedo.minCoeff() > 0.0)) {
     throw std::invalid_argument(
         "without --targets, correspondences fix the LUT only up to a factor per channel: give --targets with one "
         "known colour, or --grey-world V (the mean albedo of the surveyed surfaces) to set the scale");
@@ -204,6 +267,10 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
       summary.num_target_images = model.images.size();
     }
   }
+  if (!options.chessboard.empty()) {
+    const std::vector<KnownColorObservation> board = ChessboardObservations(options, camera, &summary);
+    observations.known_colors.insert(observations.known_colors.end(), board.begin(), board.end());
+  }
   if (options.correspondences) {
     SurveyCorrespondenceOptions extraction = options.correspondence_extraction;
     extraction.superpixels.shading_light_in_cam = options.shading_light_in_cam;
@@ -247,6 +314,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
                                       result.summary.pure_water_max_violation.y(),
                                       result.summary.pure_water_max_violation.z()};
   json["target_images"] = summary.num_target_images;
+  json["chessboard_images"] = summary.num_chessboard_images;
   json["superpixel_samples"] = summary.num_superpixel_samples;
   json["correspondences"] = result.summary.num_correspondences;
   json["correspondence_albedo_rms"] = {result.summary.correspondence_albedo_rms.x(),

@@ -3,6 +3,7 @@
 // `lutex calibrate`: fits the LUT of a camera-and-lights rig from
 //   - targets of known colour (targets file, see lib/calibration/targets.h) seen in the workspace's images
 //     or in separate calibration images (their own COLMAP model and mesh of the targets);
+//   - a black-and-white chessboard in a folder of images of the same camera (no model or mesh needed);
 //   - correspondences between the workspace's own survey images (survey_correspondences.h), with or
 //     without targets; without, the absolute scale comes from a grey-world albedo the user gives;
 //   - optionally pure-water images (beta upper bounds).
@@ -30,6 +31,10 @@ struct CalibrateOptions {
   // mesh; empty: the targets are looked for in `workspace`.
   std::filesystem::path targets_workspace;
   std::filesystem::path targets_mesh;
+  // A black-and-white chessboard of known albedo (lib/calibration/chessboard_target.h) in the images of
+  // `chessboard_images` (a folder; taken with the workspace's camera): found by OpenCV, posed by solvePnP.
+  std::filesystem::path chessboard;
+  std::filesystem::path chessboard_images;
   // Correspondence constraints from the workspace's images.
   bool correspondences = false;
   SurveyCorrespondenceOptions correspondence_extraction;
@@ -61,6 +66,7 @@ struct CalibrateSummary {
   std::filesystem::path lut;
   std::size_t num_images = 0;
   std::size_t num_target_images = 0;
+  std::size_t num_chessboard_images = 0;  // in which the chessboard was found
   std::size_t num_superpixel_samples = 0;
   std::size_t num_pure_water_images = 0;
   std::size_t num_pure_water_skipped = 0;  // images that seemed to show a surface

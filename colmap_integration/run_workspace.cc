@@ -111,10 +111,10 @@ std::string SummaryText(const Summary& summary, Print print) {
 void RunOptions::Check() const {
   if (workspace.empty()) throw std::invalid_argument("--workspace is required");
   if (mesh.empty()) throw std::invalid_argument("--mesh is required");
-  if (lut.empty() && calibrate.targets.empty() && !calibrate.correspondences) {
+  if (lut.empty() && calibrate.targets.empty() && calibrate.chessboard.empty() && !calibrate.correspondences) {
     throw std::invalid_argument(
-        "nothing to calibrate from: give --targets T (known colours), --correspondences (with --grey-world V when "
-        "there are no targets), or a LUT calibrated before with --lut L");
+        "nothing to calibrate from: give --targets T or --chessboard C (known colours), --correspondences (with "
+        "--grey-world V when there are no targets), or a LUT calibrated before with --lut L");
   }
 }
 
@@ -163,6 +163,8 @@ RunSummary RunWorkspace(const RunOptions& options) {
     if (!calibrate.targets.empty()) record.AddFile(calibrate.targets);
     if (!calibrate.targets_workspace.empty()) AddOtherWorkspace(&record, calibrate.targets_workspace);
     if (!calibrate.targets_mesh.empty()) record.AddFile(calibrate.targets_mesh);
+    if (!calibrate.chessboard.empty()) record.AddFile(calibrate.chessboard);
+    if (!calibrate.chessboard_images.empty()) AddFolder(&record, calibrate.chessboard_images);
     if (!calibrate.pure_water.empty()) AddOtherWorkspace(&record, calibrate.pure_water);
     record.AddOutput(summary.lut);
     record.AddOutput(summary.lut.parent_path() / "coverage.lut");

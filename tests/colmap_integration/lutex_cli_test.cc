@@ -98,7 +98,7 @@ TEST(LutexCli, SelfCalibrationWithoutAScaleSaysWhatToGive) {
   const testing::CommandResult neither =
       testing::RunCommand(std::string(LUTEX_BINARY) + " calibrate --workspace W --mesh M.ply");
   EXPECT_EQ(neither.exit_code, 1);
-  EXPECT_NE(neither.output.find("give --targets (known colours), --correspondences (self-calibration), or both"),
+  EXPECT_NE(neither.output.find("give --targets or --chessboard (known colours), --correspondences (self-calibration), or both"),
             std::string::npos) << neither.output;
   const testing::CommandResult bad_grey = testing::RunCommand(
       std::string(LUTEX_BINARY) + " calibrate --workspace W --mesh M.ply --correspondences --grey-world 0.3,0.3");

@@ -94,6 +94,28 @@ std::map<std::string, std::string> Outputs(const fs::path& folder) {
   return outputs;
 }
 
+// Restored albedo (W/lutex/restored, 8-bit sRGB) against the simulator's truth, over pixels with a surface
+// and channels, in percentage points.
+double RestoredAlbedoError(const fs::path& workspace) {
+  double error_sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& entry : fs::directory_iterator(workspace / "ground_truth" / "albedo")) {
+    const cv::Mat truth = ReadLinearImage(entry.path(), ImageEncoding::kLinear16);
+    const cv::Mat restored = ReadLinearImage(workspace / "lutex" / "restored" / entry.path().filename(), ImageEncoding::kSrgb8);
+    for (int y = 0; y < truth.rows; ++y) {
+      for (int x = 0; x < truth.cols; ++x) {
+        const cv::Vec3f t = truth.at<cv::Vec3f>(y, x);
+        if (t[0] + t[1] + t[2] <= 0.0f) continue;
+        const cv::Vec3f r = restored.at<cv::Vec3f>(y, x);
+        for (int c = 0; c < 3; ++c) error_sum += std::abs(double(r[c]) - double(t[c]));
+        count += 3;
+      }
+    }
+  }
+  EXPECT_GT(count, 0u);
+  return 100.0 * error_sum / double(std::max<std::size_t>(count, 1));
+}
+
 class RunTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -181,24 +203,7 @@ TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
   EXPECT_NE(first.output.find("[calibrate: done"), std::string::npos) << first.output;
   EXPECT_NE(first.output.find("report:"), std::string::npos) << first.output;
 
-  // Restored albedo against the simulator's truth, over pixels with a surface.
-  double error_sum = 0.0;
-  std::size_t count = 0;
-  for (const auto& entry : fs::directory_iterator(workspace / "ground_truth" / "albedo")) {
-    const cv::Mat truth = ReadLinearImage(entry.path(), ImageEncoding::kLinear16);
-    const cv::Mat restored = ReadLinearImage(workspace / "lutex" / "restored" / entry.path().filename(), ImageEncoding::kSrgb8);
-    for (int y = 0; y < truth.rows; ++y) {
-      for (int x = 0; x < truth.cols; ++x) {
-        const cv::Vec3f t = truth.at<cv::Vec3f>(y, x);
-        if (t[0] + t[1] + t[2] <= 0.0f) continue;
-        const cv::Vec3f r = restored.at<cv::Vec3f>(y, x);
-        for (int c = 0; c < 3; ++c) error_sum += std::abs(double(r[c]) - double(t[c]));
-        count += 3;
-      }
-    }
-  }
-  ASSERT_GT(count, 0u);
-  const double mae = 100.0 * error_sum / double(count);
+  const double mae = RestoredAlbedoError(workspace);
   std::cout << "lutex run on the small example: restored albedo MAE " << mae << " pp\n";
   EXPECT_LT(mae, 5.0);
 
@@ -255,6 +260,69 @@ TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
   EXPECT_NE(third.output.find("[calibrate: up to date"), std::string::npos) << third.output;
   EXPECT_NE(third.output.find("[restore: up to date"), std::string::npos) << third.output;
   EXPECT_NE(third.output.find("[texture: done"), std::string::npos) << third.output;
+}
+
+// A chessboard instead of the colour board: frames of a black-and-white chessboard (9 x 6 inner corners,
+// 0.12 m squares, white margin) taken with the example's rig from 1.2-2.5 m, the board in the centre and
+// the four quadrants of the image; lutex run calibrates from it and the pure water, and restores the survey.
+TEST_F(RunTest, ChessboardFramesCalibrateTheSurvey) {
+  testing::TempDir dir;
+  const int corners_x = 9, corners_y = 6;
+  const double square = 0.12;
+  {
+    std::ofstream ply(dir.path() / "chessboard.ply");
+    const int squares_x = corners_x + 3, squares_y = corners_y + 3;  // with the margin
+    ply << "ply\nformat ascii 1.0\nelement vertex " << 4 * squares_x * squares_y
+        << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << 2 * squares_x * squares_y
+        << "\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+           "end_header\n";
+    for (int b = -2; b <= corners_y; ++b) {
+      for (int a = -2; a <= corners_x; ++a) {
+        const double x = (a - 0.5 * (corners_x - 1)) * square, y = (b - 0.5 * (corners_y - 1)) * square;
+        ply << x << " " << y << " 0\n" << x + square << " " << y << " 0\n" << x + square << " " << y + square
+            << " 0\n" << x << " " << y + square << " 0\n";
+      }
+    }
+    int base = 0;
+    for (int b = -2; b <= corners_y; ++b) {
+      for (int a = -2; a <= corners_x; ++a, base += 4) {
+        const bool margin = a == -2 || b == -2 || a == corners_x || b == corners_y;
+        const int grey = margin || ((a + b) % 2 + 2) % 2 == 0 ? 225 : 25;
+        ply << "3 " << base << " " << base + 1 << " " << base + 2 << " " << grey << " " << grey << " " << grey << "\n";
+        ply << "3 " << base << " " << base + 2 << " " << base + 3 << " " << grey << " " << grey << " " << grey << "\n";
+      }
+    }
+  }
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(data_->path() / "board.json"));
+  scene["mesh"] = (dir.path() / "chessboard.ply").string();
+  scene["poses"] = nlohmann::json::array();
+  for (const double height : {1.2, 1.6, 2.0, 2.5}) {
+    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {0.35, 0.25}, {-0.35, 0.25}, {0.35, -0.25}, {-0.35, -0.25}}) {
+      // Looking straight down from (x h, y h, h): cam_from_world rotation diag(1, -1, -1).
+      scene["poses"].push_back({{"name", "board_" + std::to_string(scene["poses"].size()) + ".png"},
+                                {"qvec", {0, 1, 0, 0}},
+                                {"tvec", {-x * height, y * height, height}}});
+    }
+  }
+  std::ofstream(dir.path() / "chessboard.json") << scene.dump(1);
+  Simulate(dir.path() / "chessboard.json", dir.path() / "chessboard");
+  std::ofstream(dir.path() / "spec.json") << R"({"chessboard": {"inner_corners": [9, 6], "square_size": 0.12,
+    "black_albedo_srgb8": [25, 25, 25], "white_albedo_srgb8": [225, 225, 225]}})";
+
+  const fs::path workspace = CopyOfSurvey(dir.path() / "W");
+  const testing::CommandResult run = testing::RunCommand(
+      std::string(LUTEX_BINARY) + " run --workspace " + workspace.string() + " --mesh " +
+      (workspace / "scene" / "mesh.ply").string() + " --chessboard " + (dir.path() / "spec.json").string() +
+      " --chessboard-images " + (dir.path() / "chessboard" / "images").string() + " --pure-water " +
+      (data_->path() / "purewater").string() + " --lut-nx 20 --lut-ny 15 --lut-nz 8 --num-threads 2 --no-report");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json summary =
+      nlohmann::json::parse(std::ifstream(workspace / "lutex" / "calibration" / "calibration_summary.json"));
+  std::cout << "chessboard found in " << summary.at("chessboard_images").get<int>() << " of 20 frames\n";
+  EXPECT_GE(summary.at("chessboard_images").get<int>(), 14);
+  const double mae = RestoredAlbedoError(workspace);
+  std::cout << "lutex run from a chessboard: restored albedo MAE " << mae << " pp\n";
+  EXPECT_LT(mae, 6.0);
 }
 
 TEST_F(RunTest, BadInputFailsWithOneLineNamingItAndWritesNothing) {
