@@ -4,11 +4,17 @@
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
+
+#include "lib/util/logging.h"
 
 namespace lutex {
 
 OptionParser::OptionParser(std::string usage, std::string summary)
-    : usage_(std::move(usage)), summary_(std::move(summary)) {}
+    : usage_(std::move(usage)), summary_(std::move(summary)) {
+  AddCustom("log-level", "info", "Messages on stderr: debug, info, warning, error or silent.",
+            [](const std::string& text) { SetLogLevel(ParseLogLevel(text)); });
+}
 
 namespace {
 
@@ -188,7 +194,12 @@ bool OptionParser::Parse(int argc, char** argv, int first) {
 std::string OptionParser::Help() const {
   std::ostringstream out;
   out << "Usage: " << usage_ << "\n\n" << summary_ << "\n\nOptions:\n";
-  for (const Option& option : options_) {
+  // The options every command has (the first, --log-level, is registered by the constructor) come last.
+  std::vector<const Option*> ordered;
+  for (std::size_t i = 1; i < options_.size(); ++i) ordered.push_back(&options_[i]);
+  ordered.push_back(&options_.front());
+  for (const Option* listed : ordered) {
+    const Option& option = *listed;
     out << "  --" << option.name << (option.is_flag ? "" : " VALUE");
     if (option.required) {
       out << "  (required)";

@@ -13,6 +13,7 @@
 //   lut-nx = 40
 //
 // Blank lines and lines starting with '#' are ignored. Options on the command line win over the file's.
+// Every command also takes `--log-level debug|info|warning|error|silent`.
 
 #include <filesystem>
 #include <functional>

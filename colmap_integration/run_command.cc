@@ -8,7 +8,6 @@
 #include "colmap_integration/restore_command.h"
 #include "colmap_integration/run_workspace.h"
 #include "colmap_integration/texture_command.h"
-#include "lib/util/logging.h"
 
 namespace lutex {
 
@@ -40,8 +39,6 @@ int RunRunCommand(int argc, char** argv) {
   parser.AddFlag("force", &options.force, "Run every stage, even those that are up to date.");
   parser.AddFlag("report", &options.report, "Write the HTML report at the end (--no-report to skip).");
   parser.AddInt("num-threads", &options.num_threads, "Threads; 0 = all cores. Results do not depend on it.");
-  parser.AddCustom("log-level", "info", "debug, info, warning, error or silent.",
-                   [](const std::string& text) { SetLogLevel(ParseLogLevel(text)); });
   parser.SetGroup("calibrate");
   AddCalibrateStageOptions(parser, &options.calibrate);
   parser.SetGroup("restore");
