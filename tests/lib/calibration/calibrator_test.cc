@@ -32,17 +32,7 @@ namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
 
-FrustumLutGrid Grid() {
-  FrustumLutGrid grid;
-  grid.nx = 8;
-  grid.ny = 6;
-  grid.nz = 6;
-  grid.z_near = 0.7;
-  grid.z_far = 2.8;
-  grid.image_width = kWidth;
-  grid.image_height = kHeight;
-  return grid;
-}
+FrustumLutGrid Grid() { return testing::LutGrid(8, 6, 6, 0.7, 2.8, kWidth, kHeight); }
 
 // A camera looking at the board (the plane z = 0) from `distance`, tilted by `tilt` radians about x.
 Rigid3d BoardView(double distance, double tilt) {
@@ -124,16 +114,7 @@ TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
   const Simulator held_out(board, testing::TwoCosineLights(0.3, 1.0, 1.5), testing::ClearWater(), SurfaceAlbedo::Constant(grey));
   const Frame frame = Render(held_out, scene, rays, BoardView(1.8, 0.35), 99, dir);
   const RestoredImage restored = RestoreImage(frame.image, frame.maps, rays, result.lut, RestorationOptions());
-  std::vector<double> errors;
-  for (int row = 0; row < kHeight; ++row) {
-    for (int col = 0; col < kWidth; ++col) {
-      for (int c = 0; c < 3; ++c) {
-        if (restored.confidence.at<cv::Vec3f>(row, col)[c] < 0.5f) continue;
-        errors.push_back(std::abs(restored.albedo.at<cv::Vec3f>(row, col)[c] - grey[c]));
-      }
-    }
-  }
-  std::sort(errors.begin(), errors.end());
+  const std::vector<double> errors = testing::SortedConfidentErrors(restored, grey);
   std::printf("held-out restoration: median error %.4f, p90 %.4f over %zu pixel-channels\n", errors[errors.size() / 2],
               errors[errors.size() * 9 / 10], errors.size());
   EXPECT_LT(result.summary.known_color_rms.maxCoeff(), 0.01);  // the fit explains the data to ~1 8-bit level

@@ -149,14 +149,7 @@ TEST(ChessboardTarget, FindsTheBoardAndCalibratesTheLutFromItsSquaresAlone) {
   EXPECT_LT(worst_rotation_deg, 1.5);
   EXPECT_LT(worst_translation, 0.01);
 
-  FrustumLutGrid grid;
-  grid.nx = 8;
-  grid.ny = 6;
-  grid.nz = 6;
-  grid.z_near = 0.8;
-  grid.z_far = 2.8;
-  grid.image_width = kWidth;
-  grid.image_height = kHeight;
+  const FrustumLutGrid grid = testing::LutGrid(8, 6, 6, 0.8, 2.8, kWidth, kHeight);
   CalibrationOptions options;
   options.grid = grid;
   options.levels = {{2, 2}, {4, 3}, {8, 6}};
@@ -172,17 +165,8 @@ TEST(ChessboardTarget, FindsTheBoardAndCalibratesTheLutFromItsSquaresAlone) {
   const cv::Mat image = RenderFrame(held_out, rays, pose, 99, dir);
   const RaycastScene scene(plane);
   const RestoredImage restored = RestoreImage(image, scene.Render(rays, pose), rays, result.lut, RestorationOptions());
-  std::vector<double> errors;
-  for (int row = 0; row < kHeight; ++row) {
-    for (int col = 0; col < kWidth; ++col) {
-      for (int c = 0; c < 3; ++c) {
-        if (restored.confidence.at<cv::Vec3f>(row, col)[c] < 0.5f) continue;
-        errors.push_back(std::abs(restored.albedo.at<cv::Vec3f>(row, col)[c] - grey[c]));
-      }
-    }
-  }
+  const std::vector<double> errors = testing::SortedConfidentErrors(restored, grey);
   ASSERT_GT(errors.size(), static_cast<std::size_t>(kWidth * kHeight));
-  std::sort(errors.begin(), errors.end());
   std::printf("held-out grey plane restored from the chessboard's LUT: median error %.4f, p90 %.4f over %zu "
               "pixel-channels (rms of the fit %.4f)\n", errors[errors.size() / 2], errors[errors.size() * 9 / 10],
               errors.size(), result.summary.known_color_rms.maxCoeff());

@@ -19,6 +19,7 @@
 #include "lib/model/simulator.h"
 #include "lib/model/synthetic_seafloor.h"
 #include "lib/restoration/restorer.h"
+#include "tests/support/test_scenes.h"
 
 namespace lutex {
 namespace {
@@ -67,17 +68,7 @@ class InAirCorrespondences : public ::testing::Test {
     return {{light}};
   }
 
-  static FrustumLutGrid Grid() {
-    FrustumLutGrid grid;
-    grid.nx = 8;
-    grid.ny = 6;
-    grid.nz = 3;
-    grid.z_near = 1.1;
-    grid.z_far = 2.0;
-    grid.image_width = kWidth;
-    grid.image_height = kHeight;
-    return grid;
-  }
+  static FrustumLutGrid Grid() { return testing::LutGrid(8, 6, 3, 1.1, 2.0, kWidth, kHeight); }
 
   Frame Render(const Eigen::Vector3d& centre, std::uint64_t index) const {
     Frame frame;
