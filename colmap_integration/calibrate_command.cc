@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "colmap_integration/image_encoding_option.h"
+#include "colmap_integration/workspace.h"
 
 namespace lutex {
 
@@ -105,7 +106,7 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << " " << c.correspondence_albedo_rms.z() << "; " << std::setprecision(0) << 100 * c.covered_fraction << " % of nodes covered; "
             << std::setprecision(1) << c.seconds << " s\n"
             << "  LUT:      " << summary.lut.string() << "\n"
-            << "  coverage: " << (summary.lut.parent_path() / "coverage.lut").string() << "\n";
+            << "  coverage: " << CoverageLutPath(summary.lut).string() << "\n";
 }
 
 }  // namespace lutex

@@ -300,10 +300,10 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   const CalibrationResult result =
       Calibrate(observations, reference_simulator.TrueLut(camera, calibration.grid), calibration);
 
-  summary.lut = options.output.empty() ? workspace.OutputDir() / "calibration" / "lut.lut" : options.output;
+  summary.lut = options.output.empty() ? workspace.LutPath() : options.output;
   summary.calibration = result.summary;
   WriteLut(result.lut, summary.lut);
-  WriteLut(result.coverage, summary.lut.parent_path() / "coverage.lut");
+  WriteLut(result.coverage, CoverageLutPath(summary.lut));
   WriteLutSlabImages(result.lut, summary.lut.parent_path() / "slabs");
   nlohmann::json json;
   json["known_color_observations"] = result.summary.num_known_color;
@@ -339,7 +339,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
       {"known_color", histogram_json(result.summary.known_color_residuals)},
       {"correspondence_albedo_difference", histogram_json(result.summary.correspondence_albedo_differences)},
       {"pure_water_excess", histogram_json(result.summary.pure_water_excess)}};
-  WriteFileAtomically(summary.lut.parent_path() / "calibration_summary.json", std::ios::out,
+  WriteFileAtomically(CalibrationSummaryPath(summary.lut), std::ios::out,
                       [&json](std::ostream& stream) { stream << json.dump(2) << "\n"; });
   return summary;
 }

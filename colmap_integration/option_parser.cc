@@ -34,6 +34,13 @@ T ParseNumber(const std::string& name, const std::string& text, const char* kind
   return result;
 }
 
+// `text` without leading and trailing blanks.
+std::string Trimmed(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return std::string();
+  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
 }  // namespace
 
 void OptionParser::Add(const std::string& name, const std::string& help, const std::string& default_text,
@@ -134,17 +141,12 @@ void OptionParser::ReadConfigFile(const std::filesystem::path& path) {
   const std::filesystem::path folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
   std::string line;
   for (int number = 1; std::getline(file, line); ++number) {
-    const auto trim = [](const std::string& text) {
-      const auto first = text.find_first_not_of(" \t\r");
-      if (first == std::string::npos) return std::string();
-      return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
-    };
-    line = trim(line);
+    line = Trimmed(line);
     if (line.empty() || line[0] == '#') continue;
     if (line.rfind("--", 0) == 0) line = line.substr(2);
     std::string argument = line;
     if (const auto equals = line.find('='); equals != std::string::npos) {
-      argument = trim(line.substr(0, equals)) + "=" + trim(line.substr(equals + 1));
+      argument = Trimmed(line.substr(0, equals)) + "=" + Trimmed(line.substr(equals + 1));
     }
     try {
       if (argument.rfind("config=", 0) == 0) throw std::invalid_argument("a config file cannot name another");

@@ -36,7 +36,7 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
   const RaycastScene scene(mesh);
 
   RaycastSummary summary;
-  summary.output = options.output.empty() ? workspace.OutputDir() / "raycast" : options.output;
+  summary.output = options.output.empty() ? workspace.RaycastDir() : options.output;
   summary.num_faces = mesh.NumFaces();
 
   summary.wrote_previews = options.write_previews;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <ctime>
 #include <fstream>
 #include <iomanip>
@@ -17,6 +18,7 @@
 #include "colmap_integration/confidence_map_io.h"
 #include "colmap_integration/restore_workspace.h"
 #include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/stage_record.h"
 #include "colmap_integration/workspace.h"
 #include "lib/image/image_io.h"
 #include "lib/lut/lut_file.h"
@@ -96,12 +98,10 @@ cv::Mat DisplayPicture(const fs::path& path, int width) {
   const cv::Mat picture = cv::imread(path.string(), cv::IMREAD_ANYDEPTH | cv::IMREAD_COLOR);
   if (picture.empty()) throw std::runtime_error(path.string() + ": cannot read the image");
   if (picture.depth() == CV_8U) return Resized(picture, width);
+  cv::Mat samples = picture;
+  if (picture.depth() != CV_16U) picture.convertTo(samples, CV_32F);  // float files, whatever their precision
   const ImageEncoding encoding = picture.depth() == CV_16U ? ImageEncoding::kLinear16 : ImageEncoding::kFloat;
-  cv::Mat as_float;
-  if (encoding == ImageEncoding::kFloat) picture.convertTo(as_float, CV_32F);
-  return Resized(EncodeLinearImage(DecodeLinearImage(encoding == ImageEncoding::kFloat ? as_float : picture, encoding),
-                                   ImageEncoding::kSrgb8),
-                 width);
+  return Resized(EncodeLinearImage(DecodeLinearImage(samples, encoding), ImageEncoding::kSrgb8), width);
 }
 
 // One channel (0 = red) of an 8-bit BGR LUT picture, in false colour.
@@ -160,19 +160,13 @@ void RunSection(std::ostream& html, const fs::path& records) {
   bool any = false;
   html << "<table><tr><th>stage</th><th>state</th><th>time</th><th>summary</th></tr>\n";
   for (const char* stage : {"raycast", "calibrate", "restore", "texture"}) {
-    std::ifstream file(records / (std::string(stage) + ".json"));
-    if (!file) continue;
-    nlohmann::json record;
-    try {
-      record = nlohmann::json::parse(file);
-    } catch (const std::exception&) {
-      continue;
-    }
+    const std::optional<StoredStageRecord> record = ReadStageRecord(StageRecordPath(records, stage));
+    if (!record) continue;
     any = true;
-    const std::string state = record.value("state", "?");
-    html << "<tr><td>" << stage << "</td><td>" << Escape(state == "started" ? "started, not finished" : state)
-         << "</td><td>" << std::fixed << std::setprecision(1) << record.value("seconds", 0.0) << " s</td><td><pre>"
-         << Escape(record.value("summary", "")) << "</pre></td></tr>\n";
+    html << "<tr><td>" << stage << "</td><td>"
+         << Escape(record->state == "started" ? "started, not finished" : record->state) << "</td><td>" << std::fixed
+         << std::setprecision(1) << record->seconds << " s</td><td><pre>" << Escape(record->summary)
+         << "</pre></td></tr>\n";
   }
   html << "</table>\n";
   if (!any) html << "<p class=\"missing\">No run records in " << Escape(records.string()) << " (lutex run keeps them).</p>\n";
@@ -180,7 +174,7 @@ void RunSection(std::ostream& html, const fs::path& records) {
 
 void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs::path& lut_path) {
   html << "<h2>Calibration</h2>\n";
-  const fs::path summary_path = lut_path.parent_path() / "calibration_summary.json";
+  const fs::path summary_path = CalibrationSummaryPath(lut_path);
   if (std::ifstream file(summary_path); file) {
     const nlohmann::json summary = nlohmann::json::parse(file);
     html << "<table class=\"numbers\">"
@@ -225,7 +219,7 @@ void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs:
   }
   const FrustumLut lut = ReadLut(lut_path);
   const LutSlabImages slabs = RenderLutSlabs(lut, 120);
-  const fs::path coverage_path = lut_path.parent_path() / "coverage.lut";
+  const fs::path coverage_path = CoverageLutPath(lut_path);
   std::vector<cv::Mat> coverage;
   if (fs::exists(coverage_path)) coverage = RenderLutSlabs(ReadLut(coverage_path), 120).alpha;
   const FrustumLutGrid& grid = lut.grid();
@@ -255,9 +249,8 @@ void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs:
 void RestorationSection(std::ostream& html, PictureEmbedder& pictures, const Workspace& workspace,
                         const ReportOptions& options) {
   html << "<h2>Restoration</h2>\n";
-  const fs::path restored = workspace.OutputDir() / "restored";
-  fs::path confidence = restored;
-  confidence += "_confidence";
+  const fs::path restored = workspace.RestoredDir();
+  const fs::path confidence = ConfidenceDirOf(restored);
   if (!fs::is_directory(restored)) {
     html << "<p class=\"missing\">No restored images in " << Escape(restored.string()) << ".</p>\n";
     return;
@@ -295,7 +288,7 @@ void RestorationSection(std::ostream& html, PictureEmbedder& pictures, const Wor
 
 void TextureSection(std::ostream& html, PictureEmbedder& pictures, const Workspace& workspace) {
   html << "<h2>Texture</h2>\n";
-  const fs::path model = workspace.OutputDir() / "model.glb";
+  const fs::path model = workspace.ModelPath();
   if (!fs::exists(model)) {
     html << "<p class=\"missing\">No textured model at " << Escape(model.string()) << ".</p>\n";
     return;
@@ -322,8 +315,8 @@ void ReportOptions::Check() const {
 ReportSummary WriteReport(const ReportOptions& options) {
   options.Check();
   const Workspace workspace = FindWorkspace(options.workspace);
-  const fs::path lut = options.lut.empty() ? workspace.OutputDir() / "calibration" / "lut.lut" : options.lut;
-  const fs::path folder = options.output.empty() ? workspace.OutputDir() / "report" : options.output;
+  const fs::path lut = options.lut.empty() ? workspace.LutPath() : options.lut;
+  const fs::path folder = options.output.empty() ? workspace.ReportDir() : options.output;
   PictureEmbedder pictures;
   std::ostringstream html;
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -336,7 +329,7 @@ ReportSummary WriteReport(const ReportOptions& options) {
           ".slabs td{padding:2px}.slabs img{display:block}img{max-width:100%}\n"
        << "</style></head><body>\n<h1>lutex report</h1>\n<p>Workspace " << Escape(fs::absolute(workspace.root).string())
        << "; written " << std::put_time(std::gmtime(&now), "%Y-%m-%d %H:%M UTC") << ".</p>\n";
-  RunSection(html, workspace.OutputDir() / "run");
+  RunSection(html, workspace.RunRecordsDir());
   CalibrationSection(html, pictures, lut);
   RestorationSection(html, pictures, workspace, options);
   TextureSection(html, pictures, workspace);

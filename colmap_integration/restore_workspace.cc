@@ -25,7 +25,7 @@ namespace {
 fs::path CoveragePath(const RestoreOptions& options) {
   if (options.ignore_coverage) return {};
   if (!options.coverage.empty()) return options.coverage;
-  const fs::path beside = options.lut.parent_path() / "coverage.lut";
+  const fs::path beside = CoverageLutPath(options.lut);
   return fs::exists(beside) ? beside : fs::path();
 }
 
@@ -99,9 +99,8 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
 
   RestoreSummary summary;
   summary.coverage = coverage_path;
-  summary.output = options.output.empty() ? workspace.OutputDir() / "restored" : options.output;
-  summary.confidence_output = summary.output;
-  summary.confidence_output += "_confidence";
+  summary.output = options.output.empty() ? workspace.RestoredDir() : options.output;
+  summary.confidence_output = ConfidenceDirOf(summary.output);
   const auto outputs_of = [&](const Image& image) {
     return std::vector<fs::path>{RestoredImagePath(summary.output, image.name, output_encoding),
                                  ConfidenceMapPath(summary.confidence_output, image.name)};

@@ -64,7 +64,7 @@ class StageRunner {
   // `output_folders` are cleared of a killed run's temporaries first.
   RunStageSummary Run(const StageRecord& record, const std::vector<fs::path>& output_folders,
                       const std::function<std::string(bool resume)>& work) {
-    const fs::path record_path = records_dir_ / (record.stage() + ".json");
+    const fs::path record_path = StageRecordPath(records_dir_, record.stage());
     const std::string fingerprint = record.Fingerprint();
     const std::optional<StoredStageRecord> previous = ReadStageRecord(record_path);
     RunStageSummary stage;
@@ -123,8 +123,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const Workspace workspace = FindWorkspace(options.workspace);
   if (!fs::exists(options.mesh)) throw std::runtime_error(options.mesh.string() + ": no such mesh file");
-  const fs::path out = workspace.OutputDir();
-  StageRunner runner(out / "run", options.force);
+  StageRunner runner(workspace.RunRecordsDir(), options.force);
   RunSummary summary;
 
   const auto base_record = [&](const std::string& stage) {
@@ -139,7 +138,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
     RaycastOptions raycast = options.raycast;
     raycast.workspace = options.workspace;
     raycast.mesh = options.mesh;
-    raycast.output = out / "raycast";
+    raycast.output = workspace.RaycastDir();
     raycast.num_threads = options.num_threads;
     StageRecord record = base_record("raycast");
     record.AddOutput(raycast.output);
@@ -149,7 +148,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
     }));
   }
 
-  summary.lut = options.lut.empty() ? out / "calibration" / "lut.lut" : options.lut;
+  summary.lut = options.lut.empty() ? workspace.LutPath() : options.lut;
   if (options.lut.empty()) {
     CalibrateOptions calibrate = options.calibrate;
     calibrate.workspace = options.workspace;
@@ -167,8 +166,8 @@ RunSummary RunWorkspace(const RunOptions& options) {
     if (!calibrate.chessboard_images.empty()) AddFolder(&record, calibrate.chessboard_images);
     if (!calibrate.pure_water.empty()) AddOtherWorkspace(&record, calibrate.pure_water);
     record.AddOutput(summary.lut);
-    record.AddOutput(summary.lut.parent_path() / "coverage.lut");
-    record.AddOutput(summary.lut.parent_path() / "calibration_summary.json");
+    record.AddOutput(CoverageLutPath(summary.lut));
+    record.AddOutput(CalibrationSummaryPath(summary.lut));
     summary.stages.push_back(runner.Run(record, {summary.lut.parent_path()}, [&](bool) {
       return SummaryText(CalibrateWorkspace(calibrate), PrintCalibrateSummary);
     }));
@@ -180,17 +179,17 @@ RunSummary RunWorkspace(const RunOptions& options) {
   restore.workspace = options.workspace;
   restore.mesh = options.mesh;
   restore.lut = summary.lut;
-  restore.output = out / "restored";
+  restore.output = workspace.RestoredDir();
   restore.input_encoding = options.input_encoding;
   restore.num_threads = options.num_threads;
   summary.restored = restore.output;
-  summary.confidence = out / "restored_confidence";
+  summary.confidence = ConfidenceDirOf(summary.restored);
   {
     StageRecord record = base_record("restore");
     record.AddSetting("input-encoding", ImageEncodingName(options.input_encoding));
     AddFolder(&record, workspace.images_dir);
     record.AddFileContents(summary.lut);
-    const fs::path coverage = summary.lut.parent_path() / "coverage.lut";
+    const fs::path coverage = CoverageLutPath(summary.lut);
     if (!restore.ignore_coverage && fs::exists(coverage)) record.AddFileContents(coverage);
     record.AddOutput(summary.restored);
     record.AddOutput(summary.confidence);
@@ -207,7 +206,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
   texture.confidence = summary.confidence;
   texture.image_encoding =
       restore.output_encoding == "same" ? options.input_encoding : ParseImageEncoding(restore.output_encoding);
-  texture.output = out / "model.glb";
+  texture.output = workspace.ModelPath();
   texture.baking.num_threads = options.num_threads;
   summary.model = texture.output;
   {
@@ -216,7 +215,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
     AddFolder(&record, summary.restored);
     if (!texture.ignore_confidence) AddFolder(&record, summary.confidence);
     record.AddOutput(texture.output);
-    summary.stages.push_back(runner.Run(record, {out}, [&](bool) {
+    summary.stages.push_back(runner.Run(record, {texture.output.parent_path()}, [&](bool) {
       return SummaryText(TextureWorkspace(texture), PrintTextureSummary);
     }));
   }

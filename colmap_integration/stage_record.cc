@@ -90,6 +90,10 @@ bool StageRecord::OutputsExist() const {
   return true;
 }
 
+fs::path StageRecordPath(const fs::path& records_dir, const std::string& stage) {
+  return records_dir / (stage + ".json");
+}
+
 void WriteStageRecord(const fs::path& path, const StageRecord& record, const std::string& state, double seconds,
                       const std::string& summary) {
   nlohmann::ordered_json json;

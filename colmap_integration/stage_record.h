@@ -66,6 +66,9 @@ struct StoredStageRecord {
   std::string summary;
 };
 
+// Where the record of `stage` lives in a folder of records (W/lutex/run): STAGE.json.
+std::filesystem::path StageRecordPath(const std::filesystem::path& records_dir, const std::string& stage);
+
 // Writes `record` as `state` (temporary name, then rename).
 void WriteStageRecord(const std::filesystem::path& path, const StageRecord& record, const std::string& state,
                       double seconds = 0.0, const std::string& summary = "");

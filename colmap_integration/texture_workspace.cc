@@ -31,10 +31,10 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
   TextureSummary summary;
   summary.images = options.images;
   if (summary.images.empty()) {
-    summary.images = workspace.OutputDir() / "restored";
+    summary.images = workspace.RestoredDir();
     if (!fs::is_directory(summary.images)) {
       summary.images = workspace.images_dir;
-      LogWarning() << "texture: " << (workspace.OutputDir() / "restored").string()
+      LogWarning() << "texture: " << workspace.RestoredDir().string()
                    << " does not exist; texturing the unrestored images of " << summary.images.string()
                    << " (run lutex restore first for albedo)";
     }
@@ -43,8 +43,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
   if (!options.ignore_confidence) {
     summary.confidence = options.confidence;
     if (summary.confidence.empty()) {
-      fs::path beside = summary.images;
-      beside += "_confidence";
+      const fs::path beside = ConfidenceDirOf(summary.images);
       if (fs::is_directory(beside)) summary.confidence = beside;
     } else if (!fs::is_directory(summary.confidence)) {
       throw std::runtime_error(summary.confidence.string() + ": no such folder");
@@ -67,7 +66,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
     views.push_back({image.name, model.cameras.at(image.camera_id), image.cam_from_world});
   }
   const Mesh mesh = ReadMesh(options.mesh);
-  const fs::path output = options.output.empty() ? workspace.OutputDir() / "model.glb" : options.output;
+  const fs::path output = options.output.empty() ? workspace.ModelPath() : options.output;
 
   ViewImageSource source;
   source.linear_rgb = [&](std::size_t v) {

@@ -15,6 +15,16 @@ bool HasSparseModel(const fs::path& folder) {
 
 }  // namespace
 
+fs::path CoverageLutPath(const fs::path& lut) { return lut.parent_path() / "coverage.lut"; }
+
+fs::path CalibrationSummaryPath(const fs::path& lut) { return lut.parent_path() / "calibration_summary.json"; }
+
+fs::path ConfidenceDirOf(const fs::path& restored) {
+  fs::path confidence = restored;
+  confidence += "_confidence";
+  return confidence;
+}
+
 fs::path DenseWorkspace::DepthMapPath(const std::string& image_name, const std::string& type) const {
   return depth_maps_dir / (image_name + "." + type + ".bin");
 }

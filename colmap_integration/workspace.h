@@ -34,7 +34,23 @@ struct Workspace {
   std::vector<DenseWorkspace> dense;  // dense/0, dense/1, ... present, in order
 
   std::filesystem::path OutputDir() const { return root / "lutex"; }
+  // The default outputs under OutputDir(), stated once for the commands that write them and those that
+  // read them (run, report).
+  std::filesystem::path RaycastDir() const { return OutputDir() / "raycast"; }
+  std::filesystem::path LutPath() const { return OutputDir() / "calibration" / "lut.lut"; }
+  std::filesystem::path RestoredDir() const { return OutputDir() / "restored"; }
+  std::filesystem::path ModelPath() const { return OutputDir() / "model.glb"; }
+  std::filesystem::path RunRecordsDir() const { return OutputDir() / "run"; }
+  std::filesystem::path ReportDir() const { return OutputDir() / "report"; }
 };
+
+// Files lutex calibrate writes beside the LUT `lut`: the per-node data coverage and the summary.
+std::filesystem::path CoverageLutPath(const std::filesystem::path& lut);
+std::filesystem::path CalibrationSummaryPath(const std::filesystem::path& lut);
+
+// The confidence maps of the restored images in `restored`: the sibling folder RESTORED_confidence (not a
+// subfolder, so tools collecting restored images by name do not pick them up).
+std::filesystem::path ConfidenceDirOf(const std::filesystem::path& restored);
 
 // Throws std::runtime_error naming `root` when it is not a folder or has no sparse model.
 Workspace FindWorkspace(const std::filesystem::path& root);
