@@ -15,6 +15,8 @@
 // its orientation, so dividing it by cos_theta would be physically wrong. At grazing angles cos_theta is
 // clamped to `min_cos_theta` (the restoration then has low confidence, see GrazingConfidence).
 
+#include <algorithm>
+
 #include <Eigen/Core>
 
 namespace lutex {
@@ -25,17 +27,31 @@ struct ImageFormationOptions {
 };
 
 // cos_theta with the light at `light_in_cam`: normal . (light - point) / |light - point|. Negative for
-// back faces.
-double ShadingCosine(const Eigen::Vector3d& point_in_cam, const Eigen::Vector3d& normal_in_cam,
-                     const Eigen::Vector3d& light_in_cam = Eigen::Vector3d::Zero());
+// back faces. Scalar: double, or float where it runs per pixel of every image (restoration).
+template <typename Scalar>
+Scalar ShadingCosine(const Eigen::Matrix<Scalar, 3, 1>& point_in_cam, const Eigen::Matrix<Scalar, 3, 1>& normal_in_cam,
+                     const Eigen::Matrix<Scalar, 3, 1>& light_in_cam = Eigen::Matrix<Scalar, 3, 1>::Zero()) {
+  return normal_in_cam.normalized().dot((light_in_cam - point_in_cam).normalized());
+}
 
 Eigen::Vector3d PredictIntensity(const Eigen::Vector3d& alpha, const Eigen::Vector3d& beta, double cos_theta,
                                  const Eigen::Vector3d& albedo);
+
+// rho of one channel; cos_theta clamped at options.min_cos_theta.
+template <typename Scalar>
+Scalar RestoreChannel(Scalar alpha, Scalar beta, Scalar cos_theta, Scalar intensity,
+                      const ImageFormationOptions& options = {}) {
+  return (intensity - beta) / (alpha * std::max(cos_theta, static_cast<Scalar>(options.min_cos_theta)));
+}
 
 Eigen::Vector3d RestoreAlbedo(const Eigen::Vector3d& alpha, const Eigen::Vector3d& beta, double cos_theta,
                               const Eigen::Vector3d& intensity, const ImageFormationOptions& options = {});
 
 // 1 for cos_theta >= 2 * min_cos_theta, falling linearly to 0 at min_cos_theta and below.
-double GrazingConfidence(double cos_theta, const ImageFormationOptions& options = {});
+template <typename Scalar>
+Scalar GrazingConfidence(Scalar cos_theta, const ImageFormationOptions& options = {}) {
+  const Scalar min_cos_theta = static_cast<Scalar>(options.min_cos_theta);
+  return std::clamp((cos_theta - min_cos_theta) / min_cos_theta, Scalar(0), Scalar(1));
+}
 
 }  // namespace lutex

@@ -4,7 +4,20 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lib/lut/lut_image_sampler.h"
+
 namespace lutex {
+namespace {
+
+// clamp(signal / (k sigma), 0, 1) from (k sigma)^2; the square root only where the signal is within k sigma
+// (few pixels: this runs for every pixel and channel of every image).
+float SignalConfidence(float signal, float squared_k_sigma) {
+  if (!(signal > 0.0f)) return 0.0f;
+  const float squared_signal = signal * signal;
+  return squared_signal >= squared_k_sigma ? 1.0f : std::sqrt(squared_signal / squared_k_sigma);
+}
+
+}  // namespace
 
 void RestorationOptions::Check() const {
   if (!(model.min_cos_theta > 0.0 && model.min_cos_theta < 1.0)) throw std::invalid_argument("min_cos_theta must be in (0, 1)");
@@ -27,34 +40,39 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
                                 std::to_string(lut.grid().image_height) + " images, not " + std::to_string(image.cols) +
                                 "x" + std::to_string(image.rows));
   }
+  const LutImageSampler sampler(lut, coverage);
+  const Eigen::Vector3f light = lut.grid().shading_light_in_cam.cast<float>();
+  const float shot_variance = static_cast<float>(options.shot_noise * options.shot_noise);
+  const float read_variance = static_cast<float>(options.read_noise * options.read_noise);
+  const float squared_snr = static_cast<float>(options.signal_to_noise * options.signal_to_noise);
+  const float saturation_level = static_cast<float>(options.saturation_level);
   RestoredImage restored;
   restored.albedo = cv::Mat(image.size(), CV_32FC3, cv::Scalar::all(0));
   restored.confidence = cv::Mat(image.size(), CV_32FC3, cv::Scalar::all(0));
   for (int row = 0; row < image.rows; ++row) {
+    const float* depth_row = maps.depth.ptr<float>(row);
+    const cv::Vec3f* normal_row = maps.normal.ptr<cv::Vec3f>(row);
+    const cv::Vec3f* observed_row = image.ptr<cv::Vec3f>(row);
+    cv::Vec3f* albedo_row = restored.albedo.ptr<cv::Vec3f>(row);
+    cv::Vec3f* confidence_row = restored.confidence.ptr<cv::Vec3f>(row);
     for (int col = 0; col < image.cols; ++col) {
-      const float depth = maps.depth.at<float>(row, col);
+      const float depth = depth_row[col];
       if (std::isnan(depth)) continue;
-      const Eigen::Vector3d direction = rays.Direction(col, row).cast<double>();
-      const Eigen::Vector3d point = (depth / direction.z()) * direction;
-      const cv::Vec3f n = maps.normal.at<cv::Vec3f>(row, col);
-      const double cos_theta = ShadingCosine(point, Eigen::Vector3d(n[0], n[1], n[2]), lut.grid().shading_light_in_cam);
-      const double u = col + 0.5, v = row + 0.5;
-      const LutNode node = lut.Lookup(u, v, depth);
-      const cv::Vec3f observed = image.at<cv::Vec3f>(row, col);
-      const Eigen::Vector3d intensity(observed[0], observed[1], observed[2]);
-      const Eigen::Vector3d albedo = RestoreAlbedo(node.alpha, node.beta, cos_theta, intensity, options.model);
-      const double grazing = GrazingConfidence(cos_theta, options.model);
-      const Eigen::Vector3d covered = coverage ? coverage->Lookup(u, v, depth).alpha : Eigen::Vector3d::Ones();
-      cv::Vec3f& out_albedo = restored.albedo.at<cv::Vec3f>(row, col);
-      cv::Vec3f& out_confidence = restored.confidence.at<cv::Vec3f>(row, col);
+      const Eigen::Vector3f& direction = rays.Direction(col, row);
+      const Eigen::Vector3f point = (depth / direction.z()) * direction;
+      const Eigen::Vector3f normal(normal_row[col][0], normal_row[col][1], normal_row[col][2]);
+      const float cos_theta = ShadingCosine(point, normal, light);
+      const float grazing = GrazingConfidence(cos_theta, options.model);
+      const LutPixelSample lut_here = sampler.At(col, row, depth);
       for (int c = 0; c < 3; ++c) {
-        const double sigma = std::sqrt(options.shot_noise * options.shot_noise * std::max(intensity[c], 0.0) +
-                                       options.read_noise * options.read_noise);
-        const double signal = std::clamp((intensity[c] - node.beta[c]) / (options.signal_to_noise * sigma + 1e-12), 0.0, 1.0);
-        const double unsaturated = intensity[c] >= options.saturation_level ? 0.0 : 1.0;
-        const bool valid = std::isfinite(albedo[c]) && node.alpha[c] > 0.0;
-        out_albedo[c] = valid ? static_cast<float>(albedo[c]) : 0.0f;
-        out_confidence[c] = valid ? static_cast<float>(signal * unsaturated * grazing * std::clamp(covered[c], 0.0, 1.0)) : 0.0f;
+        const float intensity = observed_row[col][c];
+        const float albedo = RestoreChannel(lut_here.alpha[c], lut_here.beta[c], cos_theta, intensity, options.model);
+        if (!(lut_here.alpha[c] > 0.0f) || !std::isfinite(albedo)) continue;
+        const float signal = SignalConfidence(intensity - lut_here.beta[c],
+                                              squared_snr * (shot_variance * std::max(intensity, 0.0f) + read_variance));
+        const float unsaturated = intensity >= saturation_level ? 0.0f : 1.0f;
+        albedo_row[col][c] = albedo;
+        confidence_row[col][c] = signal * unsaturated * grazing * std::clamp(lut_here.coverage[c], 0.0f, 1.0f);
       }
     }
   }

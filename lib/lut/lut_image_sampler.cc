@@ -1,0 +1,83 @@
+#include "lib/lut/lut_image_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace lutex {
+
+LutImageSampler::LutImageSampler(const FrustumLut& lut, const FrustumLut* coverage) : grid_(lut.grid()) {
+  if (coverage && !(coverage->grid() == grid_)) throw std::invalid_argument("the coverage is for another LUT grid");
+  // The lower node and the fraction of a coordinate in [0, count - 1], clamped (as FrustumLut::Lookup).
+  const auto split = [](double coordinate, int count) {
+    if (count <= 1) return Axis{};
+    const double clamped = std::clamp(coordinate, 0.0, static_cast<double>(count - 1));
+    const int lower = std::min(static_cast<int>(std::floor(clamped)), count - 2);
+    return Axis{lower, static_cast<float>(clamped - lower)};
+  };
+  for (int col = 0; col < grid_.image_width; ++col) {
+    columns_.push_back(split((col + 0.5) / grid_.image_width * grid_.nx, grid_.NodesX()));
+  }
+  for (int row = 0; row < grid_.image_height; ++row) {
+    rows_.push_back(split((row + 0.5) / grid_.image_height * grid_.ny, grid_.NodesY()));
+  }
+  has_coverage_ = coverage != nullptr;
+  inverse_square_ = grid_.alpha_interpolation == AlphaInterpolation::kInverseSquare;
+  nodes_.resize(static_cast<std::size_t>(grid_.NumNodes()));
+  for (int index = 0; index < grid_.NumNodes(); ++index) {
+    const int k = index / (grid_.NodesX() * grid_.NodesY());
+    const double alpha_factor = inverse_square_ ? grid_.SlabDepth(k) * grid_.SlabDepth(k) : 1.0;
+    PackedNode& packed = nodes_[static_cast<std::size_t>(index)];
+    for (int c = 0; c < 3; ++c) {
+      packed.alpha[c] = static_cast<float>(lut.node(index).alpha[c] * alpha_factor);
+      packed.beta[c] = static_cast<float>(lut.node(index).beta[c]);
+      packed.coverage[c] = coverage ? static_cast<float>(coverage->node(index).alpha[c]) : 0.0f;
+    }
+  }
+  if (grid_.nz > 1) {
+    const bool uniform_z = grid_.spacing == DepthSpacing::kUniformZ;
+    depth_offset_ = static_cast<float>(uniform_z ? grid_.z_near : -1.0 / grid_.z_near);
+    const double range = uniform_z ? grid_.z_far - grid_.z_near : 1.0 / grid_.z_near - 1.0 / grid_.z_far;
+    depth_scale_ = static_cast<float>((grid_.nz - 1) / range);
+  }
+}
+
+LutPixelSample LutImageSampler::At(int col, int row, float z) const {
+  const Axis& x = columns_[static_cast<std::size_t>(col)];
+  const Axis& y = rows_[static_cast<std::size_t>(row)];
+  const float depth_term = grid_.spacing == DepthSpacing::kUniformZ ? z : -1.0f / std::max(z, 1e-12f);
+  const float slab = std::clamp((depth_term - depth_offset_) * depth_scale_, 0.0f, static_cast<float>(grid_.nz - 1));
+  const int k0 = std::min(static_cast<int>(slab), std::max(grid_.nz - 2, 0));
+  const float fz = slab - static_cast<float>(k0);
+  const int k1 = std::min(k0 + 1, grid_.nz - 1);
+
+  const int stride_y = grid_.NodesX(), stride_z = grid_.NodesX() * grid_.NodesY();
+  const int base = y.lower * stride_y + x.lower;
+  const std::array<int, 8> index = {base + k0 * stride_z,           base + 1 + k0 * stride_z,
+                                    base + stride_y + k0 * stride_z, base + stride_y + 1 + k0 * stride_z,
+                                    base + k1 * stride_z,           base + 1 + k1 * stride_z,
+                                    base + stride_y + k1 * stride_z, base + stride_y + 1 + k1 * stride_z};
+  const float wx0 = 1.0f - x.fraction, wy0 = 1.0f - y.fraction, wz0 = 1.0f - fz;
+  const std::array<float, 8> weight = {wx0 * wy0 * wz0,      x.fraction * wy0 * wz0,      wx0 * y.fraction * wz0,
+                                       x.fraction * y.fraction * wz0, wx0 * wy0 * fz, x.fraction * wy0 * fz,
+                                       wx0 * y.fraction * fz, x.fraction * y.fraction * fz};
+  LutPixelSample sample;
+  sample.coverage = has_coverage_ ? std::array<float, 3>{0.f, 0.f, 0.f} : std::array<float, 3>{1.f, 1.f, 1.f};
+  for (int corner = 0; corner < 8; ++corner) {
+    const PackedNode& node = nodes_[static_cast<std::size_t>(index[corner])];
+    for (int c = 0; c < 3; ++c) {
+      sample.alpha[c] += weight[corner] * node.alpha[c];
+      sample.beta[c] += weight[corner] * node.beta[c];
+      if (has_coverage_) sample.coverage[c] += weight[corner] * node.coverage[c];
+    }
+  }
+  if (inverse_square_) {
+    const float clamped_z = grid_.nz == 1 ? static_cast<float>(grid_.z_near)
+                                          : std::clamp(z, static_cast<float>(grid_.z_near), static_cast<float>(grid_.z_far));
+    const float inverse_z2 = 1.0f / (clamped_z * clamped_z);
+    for (float& alpha : sample.alpha) alpha *= inverse_z2;
+  }
+  return sample;
+}
+
+}  // namespace lutex
