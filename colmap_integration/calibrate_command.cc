@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "colmap_integration/image_encoding_option.h"
+#include "colmap_integration/scene_description.h"
 #include "colmap_integration/workspace.h"
 
 namespace lutex {
@@ -56,10 +57,17 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
                    "x,y,z in the camera frame (metres) where shading puts the light: the camera centre (the paper),\n"
                    "      or a single flash's position. Recorded in the LUT; lutex restore follows it.",
                    [options](const std::string& text) {
-                     options->shading_light_in_cam = ParseVector3(text, "--shading-light", false);
+                     options->shading.light_in_cam = ParseVector3(text, "--shading-light", false);
                    });
+  parser.AddCustom("shading-rig", "",
+                   "FILE: a JSON file with the lights of the rig, \"lights\": [...] as in a scene description\n"
+                   "      (positions, axes, beam profiles, powers). Shading then weighs each light by the irradiance\n"
+                   "      it gives the point, so alpha no longer depends on the surface's tilt where one light\n"
+                   "      dominates (README, 'Shading'). Replaces --shading-light; recorded in the LUT.",
+                   [options](const std::string& text) { options->shading.rig = ReadLightRig(text); });
   parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
-                   "Smoothness weight relative to observations (paper: 0.01).");
+                   "Smoothness weight relative to observations (paper: 0.01); lutex multiplies it per channel by\n"
+                   "      the channel's mean observed intensity, so it means the same at any exposure.");
   parser.AddDouble("z-near", &options->z_near, "Nearest slab's planar depth (scene units).");
   parser.AddDouble("z-far", &options->z_far, "Farthest slab's planar depth.");
 }

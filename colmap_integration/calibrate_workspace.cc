@@ -75,7 +75,7 @@ std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions
                                                           const Workspace& workspace, const SparseModel& model,
                                                           const RaycastScene& scene) {
   KnownColorSamplingOptions sampling = options.sampling;
-  sampling.shading_light_in_cam = options.shading_light_in_cam;
+  sampling.shading = options.shading;
   std::map<std::uint32_t, std::vector<KnownColorObservation>> per_image;
   std::mutex per_image_mutex;
   ForEachImageWithRays(model, options.num_threads, "target images", [&](const Image& image, const CameraRays& rays) {
@@ -119,7 +119,7 @@ std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions
   std::sort(paths.begin(), paths.end());
   if (paths.empty()) throw std::runtime_error(options.chessboard_images.string() + ": no images");
   KnownColorSamplingOptions sampling = options.sampling;
-  sampling.shading_light_in_cam = options.shading_light_in_cam;
+  sampling.shading = options.shading;
   const CameraRays rays(camera, options.num_threads);
   std::vector<std::vector<KnownColorObservation>> per_image(paths.size());
   ProgressReporter progress("chessboard images", paths.size(), "images");
@@ -247,7 +247,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   calibration.grid.z_far = options.z_far;
   calibration.grid.image_width = static_cast<int>(camera.width);
   calibration.grid.image_height = static_cast<int>(camera.height);
-  calibration.grid.shading_light_in_cam = options.shading_light_in_cam;
+  calibration.grid.shading = options.shading;
   calibration.levels = DefaultLevels(options.nx, options.ny);
   calibration.in_air = options.in_air;
   calibration.num_threads = options.num_threads;
@@ -273,8 +273,8 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   }
   if (options.correspondences) {
     SurveyCorrespondenceOptions extraction = options.correspondence_extraction;
-    extraction.superpixels.shading_light_in_cam = options.shading_light_in_cam;
-    extraction.views.shading_light_in_cam = options.shading_light_in_cam;
+    extraction.superpixels.shading = options.shading;
+    extraction.views.shading = options.shading;
     extraction.input_encoding = options.input_encoding;
     extraction.num_threads = options.num_threads;
     const SurveyCorrespondences survey = ExtractSurveyCorrespondences(workspace, model, scene, extraction);
@@ -293,8 +293,12 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
             << " pure-water observations";
 
   const Mesh no_geometry;
-  LightRig reference_rig = PointLightAtCamera();
-  reference_rig.lights[0].position_in_cam = options.shading_light_in_cam;
+  // The reference lights are where shading assumes them: the rig, or a point light at the one position.
+  LightRig reference_rig = options.shading.rig;
+  if (reference_rig.lights.empty()) {
+    reference_rig = PointLightAtCamera();
+    reference_rig.lights[0].position_in_cam = options.shading.light_in_cam;
+  }
   const Simulator reference_simulator(no_geometry, reference_rig, ReferenceWater(options),
                                       SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
   const CalibrationResult result =

@@ -50,9 +50,9 @@ struct CalibrateOptions {
   bool in_air = false;
   // The water of the reference LUT that sets the weights: "clear" or "coastal" (ignored in air).
   std::string reference_water = "clear";
-  // Where shading puts the light (camera frame, metres): the camera centre (the paper), or a single
-  // flash's position. Recorded in the LUT; the reference LUT's point light sits there too.
-  Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
+  // How shading treats the lights (lib/model/shading.h): one position (the camera centre, the paper; or a
+  // single flash's position) or the light rig. Recorded in the LUT; the reference LUT is lit the same way.
+  Shading shading;
   KnownColorSamplingOptions sampling;
   int pure_water_stride = 8;
   PureWaterScreeningOptions pure_water_screening;

@@ -116,6 +116,17 @@ std::vector<NamedPose> ParseSurvey(const json& object) {
   return poses;
 }
 
+LightRig ParseLights(const json& root) {
+  if (!root.contains("lights") || !root["lights"].is_array() || root["lights"].empty()) {
+    throw DescriptionError("needs at least one light in lights[]");
+  }
+  LightRig rig;
+  for (std::size_t i = 0; i < root["lights"].size(); ++i) {
+    rig.lights.push_back(ParseLight(root["lights"][i], "lights[" + std::to_string(i) + "]"));
+  }
+  return rig;
+}
+
 SceneDescription Parse(const json& root, const std::filesystem::path& folder) {
   ExpectKeys(root, "scene", {"mesh", "albedo", "camera", "survey", "poses", "lights", "water", "sensor", "output", "lut",
                              "simulator", "comment"});
@@ -187,12 +198,7 @@ SceneDescription Parse(const json& root, const std::filesystem::path& folder) {
   }
   if (scene.poses.empty()) throw DescriptionError("the scene has no poses");
 
-  if (!root.contains("lights") || !root["lights"].is_array() || root["lights"].empty()) {
-    throw DescriptionError("the scene needs at least one light in lights[]");
-  }
-  for (std::size_t i = 0; i < root["lights"].size(); ++i) {
-    scene.rig.lights.push_back(ParseLight(root["lights"][i], "lights[" + std::to_string(i) + "]"));
-  }
+  scene.rig = ParseLights(root);
 
   if (root.contains("water") && !(root["water"].is_string() && root["water"].get<std::string>() == "air")) {
     const json& water = root["water"];
@@ -251,16 +257,28 @@ SceneDescription Parse(const json& root, const std::filesystem::path& folder) {
 
 }  // namespace
 
-SceneDescription ReadSceneDescription(const std::filesystem::path& path) {
+// `parse` applied to the JSON in `path`; every error names the file.
+template <typename Parsed>
+Parsed ParseJsonFile(const std::filesystem::path& path, const char* what, Parsed (*parse)(const json&, const std::filesystem::path&)) {
   std::ifstream stream(path);
-  if (!stream) throw std::runtime_error(path.string() + ": no such scene description");
+  if (!stream) throw std::runtime_error(path.string() + ": no such " + what);
   try {
-    return Parse(json::parse(stream), path.parent_path());
+    return parse(json::parse(stream), path.parent_path());
   } catch (const json::exception& error) {
     throw std::runtime_error(path.string() + ": " + error.what());
   } catch (const std::exception& error) {
     throw std::runtime_error(path.string() + ": " + error.what());
   }
+}
+
+SceneDescription ReadSceneDescription(const std::filesystem::path& path) {
+  return ParseJsonFile<SceneDescription>(path, "scene description", Parse);
+}
+
+LightRig ReadLightRig(const std::filesystem::path& path) {
+  return ParseJsonFile<LightRig>(path, "light rig", [](const json& root, const std::filesystem::path&) {
+    return ParseLights(root);
+  });
 }
 
 }  // namespace lutex

@@ -65,4 +65,8 @@ struct SceneDescription {
 // Throws std::runtime_error naming the file and the offending key.
 SceneDescription ReadSceneDescription(const std::filesystem::path& path);
 
+// The "lights" array of a JSON file in the format above (a scene description, or a file with only
+// {"lights": [...]}; other keys are ignored): the rig for shading (lutex calibrate --shading-rig).
+LightRig ReadLightRig(const std::filesystem::path& path);
+
 }  // namespace lutex

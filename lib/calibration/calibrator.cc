@@ -58,6 +58,32 @@ FrustumLut ScaledReference(const FrustumLut& reference, const ObservationSet& ob
   return scaled;
 }
 
+// The mean observed intensity per channel of the observations that carry data: the known colours, or
+// without them the correspondences' views. Floored so a black channel cannot switch smoothness off.
+Eigen::Vector3d MeanDataIntensity(const ObservationSet& observations) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double count = 0.0;
+  for (const KnownColorObservation& observation : observations.known_colors) {
+    sum += observation.intensity.cwiseMax(0.0);
+    ++count;
+  }
+  if (observations.known_colors.empty()) {
+    for (const CorrespondenceObservation& observation : observations.correspondences) {
+      sum += observation.first.intensity.cwiseMax(0.0) + observation.second.intensity.cwiseMax(0.0);
+      count += 2.0;
+    }
+  }
+  return (count > 0.0 ? Eigen::Vector3d(sum / count) : Eigen::Vector3d::Ones()).cwiseMax(1e-4);
+}
+
+// Smoothness weighed against each channel's data (calibrator.h): every weight of channel c times
+// `relative_intensity`[c].
+void ScaleToDataIntensity(const Eigen::Vector3d& relative_intensity, SmoothnessWeights* weights) {
+  for (auto* per_slab : {&weights->alpha_within, &weights->beta_within, &weights->alpha_between, &weights->beta_between}) {
+    for (Eigen::Vector3d& weight : *per_slab) weight = weight.cwiseProduct(relative_intensity);
+  }
+}
+
 // The albedo a view restores to with `lut`, per channel (not finite where alpha is 0).
 Eigen::Vector3d ViewAlbedo(const FrustumLut& lut, const SurfaceView& view) {
   const LutNode node = lut.Lookup(view.pixel.x(), view.pixel.y(), view.point_in_cam.z());
@@ -222,6 +248,7 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
   const bool large = !input.observations.correspondences.empty() && grid.NumNodes() > kLargestFactoredLevel;
   solver_options.linear_solver_type = large ? ceres::CGNR : ceres::SPARSE_NORMAL_CHOLESKY;
   solver_options.max_num_iterations = input.options.max_iterations;
+  solver_options.function_tolerance = input.options.function_tolerance;
   solver_options.num_threads = 1;  // parallel over channels instead
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -244,6 +271,7 @@ void CalibrationOptions::Check() const {
     throw std::invalid_argument("calibration weights must not be negative");
   }
   if (max_iterations < 1) throw std::invalid_argument("max_iterations must be at least 1");
+  if (!(function_tolerance > 0.0)) throw std::invalid_argument("function_tolerance must be positive");
 }
 
 CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut& reference,
@@ -272,6 +300,8 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
     correspondence_weights.push_back(options.correspondence_weight * weighting(observation).cwiseProduct(observation.weight));
   }
 
+  const Eigen::Vector3d data_intensity = MeanDataIntensity(observations);
+
   CalibrationResult result;
   result.summary.num_known_color = observations.known_colors.size();
   result.summary.num_pure_water = observations.pure_water.size();
@@ -284,8 +314,9 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
       for (int n = 0; n < grid.NumNodes(); ++n) level_lut.node(n).beta.setZero();
     }
     const FrustumLut level_reference = scaled_reference.Resampled(grid);
-    const SmoothnessWeights smoothness =
+    SmoothnessWeights smoothness =
         ComputeSmoothnessWeights(level_reference, options.smoothness_scale, options.alpha_smoothness_factor);
+    ScaleToDataIntensity(data_intensity / data_intensity.maxCoeff(), &smoothness);
     CalibrationLevelSummary level_summary;
     level_summary.nx = grid.nx;
     level_summary.ny = grid.ny;

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "lib/model/shading.h"
 #include "lib/calibration/observations.h"
 #include "lib/geometry/rigid3d.h"
 #include "lib/raycast/camera_rays.h"
@@ -26,7 +27,7 @@ struct CorrespondenceViewOptions {
   double min_cos_theta = 0.3;
   double max_relative_color_spread = 0.15;
   int max_footprint_pixels = 256;  // the footprint is subsampled beyond this
-  Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
+  Shading shading;
 
   void Check() const;
 };

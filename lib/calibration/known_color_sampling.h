@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "lib/model/shading.h"
 #include "lib/calibration/observations.h"
 #include "lib/raycast/camera_rays.h"
 #include "lib/raycast/geometry_maps.h"
@@ -23,7 +24,7 @@ struct KnownColorSamplingOptions {
   int edge_margin = 2;             // pixels around a sample that must share its albedo and surface
   double max_relative_depth_step = 0.02;
   // Where the light is taken to be for cos_theta (image_formation.h); must match the restoration's.
-  Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
+  Shading shading;
 
   void Check() const;
 };

@@ -124,8 +124,7 @@ std::vector<SurfaceSample> SampleSuperpixels(const cv::Mat& image, const Geometr
     const Eigen::Vector3d direction = rays.Direction(pixel.x, pixel.y).cast<double>();
     sample.view.pixel = Eigen::Vector2d(pixel.x + 0.5, pixel.y + 0.5);
     sample.view.point_in_cam = (depth / direction.z()) * direction;
-    sample.view.cos_theta = ShadingCosine(sample.view.point_in_cam, Eigen::Vector3d(normal[0], normal[1], normal[2]),
-                                          options.shading_light_in_cam);
+    sample.view.cos_theta = options.shading.Cosine(sample.view.point_in_cam, Eigen::Vector3d(normal[0], normal[1], normal[2]));
     if (sample.view.cos_theta < options.min_cos_theta) continue;
     sample.view.intensity = color;
     sample.footprint_radius = std::max(1.0, 0.5 * depth_inside[label] / scale);

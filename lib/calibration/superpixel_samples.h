@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include "lib/model/shading.h"
 #include "lib/calibration/observations.h"
 #include "lib/raycast/camera_rays.h"
 #include "lib/raycast/geometry_maps.h"
@@ -37,7 +38,7 @@ struct SuperpixelOptions {
   double max_relative_depth_range = 0.03;
   double max_relative_color_spread = 0.15;
   // Where the light is taken to be for cos_theta (image_formation.h); must match the restoration's.
-  Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
+  Shading shading;
 
   void Check() const;
 };

@@ -55,7 +55,7 @@ bool FrustumLutGrid::operator==(const FrustumLutGrid& other) const {
   return nx == other.nx && ny == other.ny && nz == other.nz && z_near == other.z_near && z_far == other.z_far &&
          spacing == other.spacing && alpha_interpolation == other.alpha_interpolation &&
          image_width == other.image_width && image_height == other.image_height &&
-         shading_light_in_cam == other.shading_light_in_cam;
+         shading == other.shading;
 }
 
 FrustumLut::FrustumLut(const FrustumLutGrid& grid) : grid_(grid) {

@@ -27,6 +27,8 @@
 
 #include <Eigen/Core>
 
+#include "lib/model/shading.h"
+
 namespace lutex {
 
 enum class DepthSpacing { kUniformZ, kUniformInverseZ };
@@ -43,9 +45,9 @@ struct FrustumLutGrid {
   // Size of the images the LUT is for; lookups take pixel coordinates in this size.
   int image_width = 0;
   int image_height = 0;
-  // Where the model's shading assumes the light (camera frame, metres; image_formation.h). Part of the
-  // LUT's meaning: restoration must shade as the calibration did.
-  Eigen::Vector3d shading_light_in_cam = Eigen::Vector3d::Zero();
+  // How the model shades (lib/model/shading.h: one light position, by default the camera centre, or the
+  // light rig). Part of the LUT's meaning: restoration must shade as the calibration did.
+  Shading shading;
 
   // Throws std::invalid_argument naming the problem.
   void Check() const;

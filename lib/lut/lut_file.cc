@@ -13,7 +13,52 @@ namespace lutex {
 namespace {
 
 constexpr const char* kMagic = "LUTEX-LUT 1";
+constexpr const char* kMagicWithRig = "LUTEX-LUT 2";
 constexpr const char* kLayout = "slab k, then row j, then column i; per node alpha_r alpha_g alpha_b beta_r beta_g beta_b";
+
+const char* ProfileName(BeamProfile profile) {
+  switch (profile) {
+    case BeamProfile::kIsotropic: return "isotropic";
+    case BeamProfile::kCosinePower: return "cosine_power";
+    case BeamProfile::kGaussian: return "gaussian";
+    case BeamProfile::kCyclesSpot: return "cycles_spot";
+  }
+  return "isotropic";
+}
+
+nlohmann::json LightToJson(const Light& light) {
+  const auto vector = [](const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+  return {{"position", vector(light.position_in_cam)}, {"direction", vector(light.direction_in_cam)},
+          {"intensity", vector(light.intensity)}, {"profile", ProfileName(light.profile)},
+          {"exponent", light.exponent}, {"sigma_rad", light.sigma_rad},
+          {"spot_size_rad", light.spot_size_rad}, {"spot_blend", light.spot_blend}};
+}
+
+Light LightFromJson(const nlohmann::json& object) {
+  const auto vector = [&](const char* key) {
+    const nlohmann::json& v = object.at(key);
+    return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>());
+  };
+  Light light;
+  light.position_in_cam = vector("position");
+  light.direction_in_cam = vector("direction");
+  light.intensity = vector("intensity");
+  const std::string profile = object.at("profile").get<std::string>();
+  bool known = false;
+  for (const BeamProfile candidate : {BeamProfile::kIsotropic, BeamProfile::kCosinePower, BeamProfile::kGaussian,
+                                      BeamProfile::kCyclesSpot}) {
+    if (profile == ProfileName(candidate)) {
+      light.profile = candidate;
+      known = true;
+    }
+  }
+  if (!known) throw std::runtime_error("unknown light profile '" + profile + "' in shading_rig");
+  light.exponent = object.at("exponent").get<double>();
+  light.sigma_rad = object.at("sigma_rad").get<double>();
+  light.spot_size_rad = object.at("spot_size_rad").get<double>();
+  light.spot_blend = object.at("spot_blend").get<double>();
+  return light;
+}
 
 }  // namespace
 
@@ -22,7 +67,9 @@ FrustumLut ReadLut(std::istream& stream) {
   if (!std::getline(stream, line) || line.rfind("LUTEX-LUT", 0) != 0) {
     throw std::runtime_error("not a lutex LUT file (no 'LUTEX-LUT' magic)");
   }
-  if (line != kMagic) throw std::runtime_error("unsupported LUT file version '" + line + "' (this lutex reads version 1)");
+  if (line != kMagic && line != kMagicWithRig) {
+    throw std::runtime_error("unsupported LUT file version '" + line + "' (this lutex reads versions 1 and 2)");
+  }
   if (!std::getline(stream, line)) throw std::runtime_error("truncated LUT file: no header");
   nlohmann::json header;
   try {
@@ -55,7 +102,10 @@ FrustumLut ReadLut(std::istream& stream) {
     }
     grid.image_width = header.at("image_width").get<int>();
     if (header.contains("shading_light_in_cam")) {
-      for (int c = 0; c < 3; ++c) grid.shading_light_in_cam[c] = header["shading_light_in_cam"].at(c).get<double>();
+      for (int c = 0; c < 3; ++c) grid.shading.light_in_cam[c] = header["shading_light_in_cam"].at(c).get<double>();
+    }
+    if (header.contains("shading_rig")) {
+      for (const nlohmann::json& light : header["shading_rig"]) grid.shading.rig.lights.push_back(LightFromJson(light));
     }
     grid.image_height = header.at("image_height").get<int>();
     if (header.at("value_type").get<std::string>() != "float64 little-endian") {
@@ -94,7 +144,8 @@ void WriteLut(const FrustumLut& lut, std::ostream& stream) {
   const FrustumLutGrid& grid = lut.grid();
   nlohmann::json header;
   header["format"] = "lutex-lut";
-  header["version"] = 1;
+  const bool with_rig = !grid.shading.rig.lights.empty();
+  header["version"] = with_rig ? 2 : 1;
   header["nx"] = grid.nx;
   header["ny"] = grid.ny;
   header["nz"] = grid.nz;
@@ -104,13 +155,17 @@ void WriteLut(const FrustumLut& lut, std::ostream& stream) {
   header["alpha_interpolation"] =
       grid.alpha_interpolation == AlphaInterpolation::kTrilinear ? "trilinear" : "inverse_square";
   header["image_width"] = grid.image_width;
-  header["shading_light_in_cam"] = {grid.shading_light_in_cam.x(), grid.shading_light_in_cam.y(),
-                                    grid.shading_light_in_cam.z()};
+  header["shading_light_in_cam"] = {grid.shading.light_in_cam.x(), grid.shading.light_in_cam.y(),
+                                    grid.shading.light_in_cam.z()};
+  if (with_rig) {
+    header["shading_rig"] = nlohmann::json::array();
+    for (const Light& light : grid.shading.rig.lights) header["shading_rig"].push_back(LightToJson(light));
+  }
   header["image_height"] = grid.image_height;
   header["node_layout"] = kLayout;
   header["value_type"] = "float64 little-endian";
   header["num_values"] = static_cast<long long>(grid.NumNodes()) * 6;
-  stream << kMagic << "\n" << header.dump() << "\n";
+  stream << (with_rig ? kMagicWithRig : kMagic) << "\n" << header.dump() << "\n";
   for (int n = 0; n < grid.NumNodes(); ++n) {
     const LutNode& node = lut.node(n);
     for (int c = 0; c < 3; ++c) WriteBinary<double>(stream, node.alpha[c]);

@@ -12,7 +12,13 @@
 //
 // Node (i, j, k) sits at pixel (i / nx * image_width, j / ny * image_height) and planar depth slab k;
 // alpha_interpolation is "trilinear" or "inverse_square" (alpha * z^2 interpolated; see frustum_lut.h);
-// shading_light_in_cam (optional, default [0, 0, 0]) is where the model's shading puts the light. Readers reject other versions, wrong value counts, truncation and non-finite values.
+// shading_light_in_cam (optional, default [0, 0, 0]) is where the model's shading puts the light.
+// Version 2 (magic "LUTEX-LUT 2", "version":2) is written only when shading uses a light rig
+// (lib/model/shading.h) and adds "shading_rig": [{"position", "direction", "intensity": [3 numbers],
+// "profile": "isotropic" | "cosine_power" | "gaussian" | "cycles_spot", "exponent", "sigma_rad",
+// "spot_size_rad", "spot_blend"}, ...], so a lutex that cannot shade with a rig rejects the file instead
+// of restoring with the wrong shading. Readers reject other versions, wrong value counts, truncation and
+// non-finite values.
 
 #include <filesystem>
 #include <istream>

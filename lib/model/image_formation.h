@@ -6,10 +6,11 @@
 //     rho_c = (I_c - beta_c(x)) / (alpha_c(x) * cos_theta)      (restoration)
 //
 // x is the surface point in the camera frame, rho the albedo, alpha the signal factor and beta the
-// backscatter stored in the FrustumLut. cos_theta is Lambertian shading with the light approximated at one
-// point: by default the camera centre (the paper's choice), i.e. the cosine between the surface normal and
-// the direction from the point to the camera. With a known rig the point can move (e.g. onto a single
-// flash; the LUT records it as FrustumLutGrid::shading_light_in_cam): a flash 0.1 m beside the camera and boards tilted by 11 degrees otherwise
+// backscatter stored in the FrustumLut. cos_theta is Lambertian shading (lib/model/shading.h, recorded in
+// the LUT as FrustumLutGrid::shading): by default with the light approximated at the camera centre (the
+// paper's choice), i.e. the cosine between the surface normal and the direction to the camera; or at one
+// other point (a single flash); or weighted over a known light rig. A flash 0.1 m beside the camera and
+// boards tilted by 11 degrees otherwise
 // cost 5 % of albedo in restoration, twice the noise floor (simulated, calibrator_test). Unlike the paper, which divides the whole observation by cos_theta, only the
 // signal is divided: backscatter is added in the water in front of the surface and does not depend on
 // its orientation, so dividing it by cos_theta would be physically wrong. At grazing angles cos_theta is

@@ -19,9 +19,10 @@
 //
 // TrueLut evaluates, at every LUT node, what a perfect calibration should find from the same physics:
 //   alpha(x) = sum_l I_l f_l(psi_l) / d_l^2 * exp(-c (d_l + |x|)) / pi,   beta(x) = backscatter to |x|,
-// which is exact for I = alpha cos_theta rho + beta when cos(i_l) = cos_theta, i.e. under the model's
-// approximation that the light is at the camera centre; for offset lights the difference is the model
-// error, not a simulator error.
+// which is exact for I = alpha cos_theta rho + beta when cos_theta is the rig's shading (Shading with this
+// rig, lib/model/shading.h; the water loss on the light paths then differs slightly between lights); with
+// shading from one position (the camera centre) it is exact only where cos(i_l) = cos_theta, and the
+// difference is the model error, not a simulator error.
 
 #include <cstdint>
 #include <memory>

@@ -41,7 +41,7 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
                                 "x" + std::to_string(image.rows));
   }
   const LutImageSampler sampler(lut, coverage);
-  const Eigen::Vector3f light = lut.grid().shading_light_in_cam.cast<float>();
+  const Shading& shading = lut.grid().shading;
   const float shot_variance = static_cast<float>(options.shot_noise * options.shot_noise);
   const float read_variance = static_cast<float>(options.read_noise * options.read_noise);
   const float squared_snr = static_cast<float>(options.signal_to_noise * options.signal_to_noise);
@@ -59,9 +59,9 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
       const float depth = depth_row[col];
       if (std::isnan(depth)) continue;
       const Eigen::Vector3f& direction = rays.Direction(col, row);
-      const Eigen::Vector3f point = (depth / direction.z()) * direction;
-      const Eigen::Vector3f normal(normal_row[col][0], normal_row[col][1], normal_row[col][2]);
-      const float cos_theta = ShadingCosine(point, normal, light);
+      const Eigen::Vector3d point = ((depth / direction.z()) * direction).cast<double>();
+      const Eigen::Vector3d normal(normal_row[col][0], normal_row[col][1], normal_row[col][2]);
+      const float cos_theta = static_cast<float>(shading.Cosine(point, normal));
       const float grazing = GrazingConfidence(cos_theta, options.model);
       const LutPixelSample lut_here = sampler.At(col, row, depth);
       for (int c = 0; c < 3; ++c) {

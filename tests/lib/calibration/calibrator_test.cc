@@ -143,7 +143,7 @@ TEST(Calibrator, InAirOneKnownColourRestoresARedBoard) {
   const Eigen::Vector3d white = Eigen::Vector3d::Constant(0.8);
   const Simulator simulator(board, flash, Water::Air(), SurfaceAlbedo::Constant(white));
   KnownColorSamplingOptions sampling;
-  sampling.shading_light_in_cam = light.position_in_cam;
+  sampling.shading.light_in_cam = light.position_in_cam;
   ObservationSet observations;
   std::uint64_t index = 200;
   for (double distance : {0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 1.7, 1.9, 2.1, 2.3, 2.5}) {
@@ -161,7 +161,7 @@ TEST(Calibrator, InAirOneKnownColourRestoresARedBoard) {
   options.grid.z_far = 2.6;
   options.levels = {{2, 2}, {4, 3}, {8, 6}};
   options.in_air = true;
-  options.grid.shading_light_in_cam = light.position_in_cam;
+  options.grid.shading.light_in_cam = light.position_in_cam;
   // The reference is rendered for a point light where shading assumes it.
   LightRig reference_rig = PointLightAtCamera();
   reference_rig.lights[0].position_in_cam = light.position_in_cam;

@@ -172,6 +172,29 @@ TEST(LutFile, RoundTripIsExact) {
   }
 }
 
+// A LUT shaded with a light rig is written as version 2 and read back with the same rig.
+TEST(LutFile, RoundTripKeepsTheShadingRig) {
+  FrustumLutGrid grid = Grid(3, 2, 2, DepthSpacing::kUniformZ);
+  for (const double x : {-0.4, 0.4}) {
+    Light light;
+    light.position_in_cam = Eigen::Vector3d(x, 0.01, 0);
+    light.direction_in_cam = Eigen::Vector3d(0.1, 0, 1).normalized();
+    light.intensity = Eigen::Vector3d(1.2, 1.0, 0.9);
+    light.profile = BeamProfile::kCyclesSpot;
+    light.spot_size_rad = 1.9;
+    light.spot_blend = 0.4;
+    grid.shading.rig.lights.push_back(light);
+  }
+  const FrustumLut lut = FilledLinear(grid);
+  std::ostringstream written;
+  WriteLut(lut, written);
+  EXPECT_EQ(written.str().rfind("LUTEX-LUT 2\n", 0), 0u);
+  std::istringstream stream(written.str());
+  const FrustumLut read = ReadLut(stream);
+  EXPECT_TRUE(read.grid() == lut.grid());
+  EXPECT_FALSE(read.grid() == Grid(3, 2, 2, DepthSpacing::kUniformZ));
+}
+
 std::string ReadError(const std::string& bytes) {
   std::istringstream stream(bytes);
   try {
@@ -188,7 +211,7 @@ TEST(LutFile, BadFilesAreClearErrors) {
   const std::string bytes = good.str();
   EXPECT_NE(ReadError(bytes.substr(0, bytes.size() - 5)).find("truncated"), std::string::npos);
   EXPECT_NE(ReadError("hello").find("not a lutex LUT"), std::string::npos);
-  EXPECT_NE(ReadError("LUTEX-LUT 2\n{}\n").find("version"), std::string::npos);
+  EXPECT_NE(ReadError("LUTEX-LUT 3\n{}\n").find("version"), std::string::npos);
   EXPECT_NE(ReadError("LUTEX-LUT 1\n{\"nx\": 2}\n").find("lacks a field"), std::string::npos);
   EXPECT_NE(ReadError(bytes + "x").find("after its values"), std::string::npos);
   std::string with_nan = bytes;
