@@ -35,9 +35,10 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
   parser.AddPath("targets-workspace", &options->targets_workspace, "Separate calibration images of the targets.");
   parser.AddPath("targets-mesh", &options->targets_mesh, "Mesh of the targets in W2's world frame.");
   parser.AddPath("chessboard", &options->chessboard,
-                 "Chessboard file (JSON: inner corners, square size, black and white albedo; README).");
+                 "Board file (JSON; README): a chessboard (inner corners, square size, black and white albedo)\n"
+                 "      or a ChArUco board with coloured patches (squares, sizes, dictionary, patches).");
   parser.AddPath("chessboard-images", &options->chessboard_images,
-                 "Folder of images of the chessboard, taken with W's camera (no model or mesh needed).");
+                 "Folder of images of the board, taken with W's camera (no model or mesh needed).");
   parser.AddFlag("correspondences", &options->correspondences, "Correspondence constraints from W's images.");
   parser.AddCustom("grey-world", "", "Without targets: mean albedo V or r,g,b of the surveyed surfaces.",
                    [options](const std::string& text) {
@@ -85,8 +86,9 @@ int RunCalibrateCommand(int argc, char** argv) {
       "    (SLIC superpixels matched across views). With targets they fill what the targets did not reach;\n"
       "    without, they fix the LUT up to a factor per channel, which --grey-world V sets (V: the mean albedo\n"
       "    of the surveyed surfaces, e.g. 0.3, or r,g,b).\n"
-      "  --chessboard C --chessboard-images DIR: a black-and-white chessboard of known albedo, found by OpenCV\n"
-      "    in DIR's images (same camera as W) and posed by solvePnP (paper Sec. 4.3).\n"
+      "  --chessboard C --chessboard-images DIR: a black-and-white chessboard of known albedo (paper Sec. 4.3)\n"
+      "    or a ChArUco board with coloured patches, found by OpenCV in DIR's images (same camera as W) and\n"
+      "    posed by solvePnP.\n"
       "  --pure-water W3: images of the same camera looking into empty water bound the backscatter.\n"
       "Writes the LUT L (default W/lutex/calibration/lut.lut), coverage.lut, calibration_summary.json and\n"
       "slab pictures beside it.");

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -13,6 +15,7 @@
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/survey_correspondences.h"
 #include "colmap_integration/workspace.h"
+#include "lib/calibration/charuco_target.h"
 #include "lib/calibration/chessboard_target.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/targets.h"
@@ -99,11 +102,43 @@ std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions
   return observations;
 }
 
-// Known colours from the chessboard in every image of options.chessboard_images (sorted by name; images
-// where OpenCV does not find it are skipped with a warning).
+// The board of `path` (a chessboard or a ChArUco board, by the file's top-level key) as a function from
+// an image to its maps, nothing where the board is not found; `what` names the board for messages.
+std::function<std::optional<BoardMaps>(const cv::Mat&, const CameraRays&)> BoardFinder(const fs::path& path,
+                                                                                           const Camera& camera,
+                                                                                           std::string* what) {
+  std::ifstream file(path);
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(file);
+  } catch (const nlohmann::json::exception& error) {
+    throw std::runtime_error(path.string() + ": not a board file (" + error.what() + ")");
+  }
+  if (json.contains("charuco")) {
+    const CharucoSpec spec = ReadCharucoSpec(path);
+    *what = "ChArUco board of " + std::to_string(spec.squares_x) + " x " + std::to_string(spec.squares_y) + " squares";
+    return [spec, camera](const cv::Mat& image, const CameraRays& rays) -> std::optional<BoardMaps> {
+      const std::optional<BoardView> view = FindCharuco(image, camera, spec);
+      if (!view) return std::nullopt;
+      return RenderCharuco(spec, *view, rays);
+    };
+  }
+  const ChessboardSpec spec = ReadChessboardSpec(path);
+  *what = "chessboard of " + std::to_string(spec.inner_corners_x) + " x " + std::to_string(spec.inner_corners_y) +
+          " inner corners";
+  return [spec, camera](const cv::Mat& image, const CameraRays& rays) -> std::optional<BoardMaps> {
+    const std::optional<BoardView> view = FindChessboard(image, camera, spec);
+    if (!view) return std::nullopt;
+    return RenderChessboard(spec, *view, rays, image);
+  };
+}
+
+// Known colours from the board (chessboard or ChArUco) in every image of options.chessboard_images (sorted
+// by name; images where OpenCV does not find it are skipped with a warning).
 std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions& options, const Camera& camera,
                                                           CalibrateSummary* summary) {
-  const ChessboardSpec spec = ReadChessboardSpec(options.chessboard);
+  std::string board_name;
+  const auto find_board = BoardFinder(options.chessboard, camera, &board_name);
   if (!fs::is_directory(options.chessboard_images)) {
     throw std::runtime_error(options.chessboard_images.string() + ": no such folder");
   }
@@ -122,7 +157,7 @@ std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions
   sampling.shading = options.shading;
   const CameraRays rays(camera, options.num_threads);
   std::vector<std::vector<KnownColorObservation>> per_image(paths.size());
-  ProgressReporter progress("chessboard images", paths.size(), "images");
+  ProgressReporter progress("board images", paths.size(), "images");
   ParallelFor(paths.size(), options.num_threads, [&](std::size_t i) {
     const cv::Mat image = ReadLinearImage(paths[i], options.input_encoding);
     if (image.cols != static_cast<int>(camera.width) || image.rows != static_cast<int>(camera.height)) {
@@ -130,13 +165,11 @@ std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions
                                std::to_string(image.rows) + " but the camera is " + std::to_string(camera.width) + "x" +
                                std::to_string(camera.height));
     }
-    const std::optional<ChessboardView> view = FindChessboard(image, camera, spec);
-    if (!view) {
-      LogWarning() << paths[i].string() << ": no chessboard of " << spec.inner_corners_x << " x " << spec.inner_corners_y
-                   << " inner corners found; the image is skipped";
+    const std::optional<BoardMaps> board = find_board(image, rays);
+    if (!board) {
+      LogWarning() << paths[i].string() << ": no " << board_name << " found; the image is skipped";
     } else {
-      const ChessboardMaps maps = RenderChessboard(spec, *view, rays, image);
-      per_image[i] = SampleKnownColors(image, maps.known_albedo, maps.maps, rays, sampling);
+      per_image[i] = SampleKnownColors(image, board->known_albedo, board->maps, rays, sampling);
     }
     progress.Advance();
   });
@@ -146,8 +179,8 @@ std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions
     observations.insert(observations.end(), list.begin(), list.end());
   }
   if (observations.empty()) {
-    throw std::runtime_error(options.chessboard_images.string() + ": the chessboard of " + options.chessboard.string() +
-                             " was found in none of the images");
+    throw std::runtime_error(options.chessboard_images.string() + ": the " + board_name + " of " +
+                             options.chessboard.string() + " was found in none of the images");
   }
   return observations;
 }

@@ -31,8 +31,10 @@ struct CalibrateOptions {
   // mesh; empty: the targets are looked for in `workspace`.
   std::filesystem::path targets_workspace;
   std::filesystem::path targets_mesh;
-  // A black-and-white chessboard of known albedo (lib/calibration/chessboard_target.h) in the images of
-  // `chessboard_images` (a folder; taken with the workspace's camera): found by OpenCV, posed by solvePnP.
+  // A board of known albedo in the images of `chessboard_images` (a folder; taken with the workspace's
+  // camera), found by OpenCV and posed by solvePnP: a black-and-white chessboard
+  // (lib/calibration/chessboard_target.h) or a ChArUco board with coloured patches (charuco_target.h),
+  // by the file's top-level key "chessboard" or "charuco".
   std::filesystem::path chessboard;
   std::filesystem::path chessboard_images;
   // Correspondence constraints from the workspace's images.

@@ -73,8 +73,7 @@ ChessboardSpec ReadChessboardSpec(const std::filesystem::path& path) {
   return spec;
 }
 
-std::optional<ChessboardView> FindChessboard(const cv::Mat& linear_rgb, const Camera& camera,
-                                             const ChessboardSpec& spec) {
+std::optional<BoardView> FindChessboard(const cv::Mat& linear_rgb, const Camera& camera, const ChessboardSpec& spec) {
   spec.Check();
   cv::Mat grey;
   cv::cvtColor(EncodeLinearImage(linear_rgb, ImageEncoding::kSrgb8), grey, cv::COLOR_BGR2GRAY);
@@ -87,73 +86,36 @@ std::optional<ChessboardView> FindChessboard(const cv::Mat& linear_rgb, const Ca
     if ((found = cv::findChessboardCornersSB(grey, pattern, corners, flags))) break;
   }
   if (!found) return std::nullopt;
-  // OpenCV's pixel centres are integers; COLMAP's (the camera's) are at +0.5. Undistorted, normalised.
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> normalised;
-  std::vector<Eigen::Vector2d> detected;
+  std::vector<Eigen::Vector3d> points_in_board;
+  std::vector<Eigen::Vector2d> pixels;
   for (int j = 0; j < spec.inner_corners_y; ++j) {
     for (int i = 0; i < spec.inner_corners_x; ++i) {
       const cv::Point2f& corner = corners[static_cast<std::size_t>(j * spec.inner_corners_x + i)];
-      const Eigen::Vector2d pixel(corner.x + 0.5, corner.y + 0.5);
-      const Eigen::Vector3d ray = camera.CamFromImg(pixel);
-      object.emplace_back(i * spec.square_size, j * spec.square_size, 0.0);
-      normalised.emplace_back(ray.x() / ray.z(), ray.y() / ray.z());
-      detected.push_back(pixel);
+      points_in_board.emplace_back(i * spec.square_size, j * spec.square_size, 0.0);
+      pixels.emplace_back(corner.x + 0.5, corner.y + 0.5);  // OpenCV's pixel centres are integers
     }
   }
-  cv::Mat rvec, tvec;
-  if (!cv::solvePnP(object, normalised, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvec, tvec, false, cv::SOLVEPNP_IPPE)) {
-    return std::nullopt;
-  }
-  cv::Mat rotation;
-  cv::Rodrigues(rvec, rotation);
-  Eigen::Matrix3d cam_from_board_rotation;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) cam_from_board_rotation(r, c) = rotation.at<double>(r, c);
-  }
-  ChessboardView view;
-  view.cam_from_board = Rigid3d(Eigen::Quaterniond(cam_from_board_rotation).normalized(),
-                                Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2)));
-  double squared = 0.0;
-  for (std::size_t k = 0; k < object.size(); ++k) {
-    const Eigen::Vector3d point_in_cam = view.cam_from_board * Eigen::Vector3d(object[k].x, object[k].y, object[k].z);
-    squared += (camera.ImgFromCam(point_in_cam) - detected[k]).squaredNorm();
-  }
-  view.reprojection_rms = std::sqrt(squared / static_cast<double>(object.size()));
-  return view;
+  return PoseFromBoardPoints(points_in_board, pixels, camera);
 }
 
-ChessboardMaps RenderChessboard(const ChessboardSpec& spec, const ChessboardView& view, const CameraRays& rays,
+BoardMaps RenderChessboard(const ChessboardSpec& spec, const BoardView& view, const CameraRays& rays,
                                 const cv::Mat& linear_rgb) {
-  const int width = rays.width(), height = rays.height();
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  ChessboardMaps result;
-  result.maps.depth = cv::Mat(height, width, CV_32F, cv::Scalar(nan));
-  result.maps.normal = cv::Mat(height, width, CV_32FC3, cv::Scalar::all(nan));
-  result.known_albedo = cv::Mat(height, width, CV_32FC3, cv::Scalar::all(nan));
-  cv::Mat parity(height, width, CV_8S, cv::Scalar(-1));  // 0 or 1 on the inner part of a square
-
-  const Eigen::Matrix3d board_from_cam_rotation = view.cam_from_board.rotation.conjugate().toRotationMatrix();
-  const Eigen::Vector3d normal_in_cam = view.cam_from_board.rotation * Eigen::Vector3d::UnitZ();
-  const Eigen::Vector3d origin_in_cam = view.cam_from_board.translation;
   const double s = spec.square_size;
+  BoardPlaneMaps plane = RenderBoardPlane(view, rays, Eigen::Vector2d(-s, -s),
+                                          Eigen::Vector2d(spec.inner_corners_x * s, spec.inner_corners_y * s));
+  const int width = rays.width(), height = rays.height();
+  BoardMaps result;
+  result.maps = std::move(plane.maps);
+  result.known_albedo = cv::Mat(height, width, CV_32FC3, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
+  cv::Mat parity(height, width, CV_8S, cv::Scalar(-1));  // 0 or 1 on the inner part of a square
   const double half_inner = 0.5 * spec.inner_fraction;
   double parity_sum[2] = {0.0, 0.0};
   int parity_count[2] = {0, 0};
   for (int row = 0; row < height; ++row) {
     for (int col = 0; col < width; ++col) {
-      const Eigen::Vector3d direction = rays.Direction(col, row).cast<double>();
-      const double along = normal_in_cam.dot(direction);
-      if (!std::isfinite(along) || std::abs(along) < 1e-9) continue;
-      const double range = normal_in_cam.dot(origin_in_cam) / along;
-      if (!(range > 0.0)) continue;
-      const Eigen::Vector3d point_in_cam = range * direction;
-      const Eigen::Vector3d point_in_board = board_from_cam_rotation * (point_in_cam - origin_in_cam);
-      const double x = point_in_board.x() / s, y = point_in_board.y() / s;
-      if (x < -1.0 || y < -1.0 || x > spec.inner_corners_x || y > spec.inner_corners_y) continue;
-      result.maps.depth.at<float>(row, col) = static_cast<float>(point_in_cam.z());
-      const Eigen::Vector3d facing = along < 0.0 ? normal_in_cam : Eigen::Vector3d(-normal_in_cam);
-      result.maps.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(float(facing.x()), float(facing.y()), float(facing.z()));
+      const cv::Vec2f point = plane.point_in_board.at<cv::Vec2f>(row, col);
+      if (std::isnan(point[0])) continue;
+      const double x = point[0] / s, y = point[1] / s;
       const double square_x = std::floor(x), square_y = std::floor(y);
       if (std::abs(x - square_x - 0.5) > half_inner || std::abs(y - square_y - 0.5) > half_inner) continue;
       const int p = static_cast<int>(std::fmod(std::fmod(square_x + square_y, 2.0) + 2.0, 2.0));

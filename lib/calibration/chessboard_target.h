@@ -20,10 +20,7 @@
 
 #include <Eigen/Core>
 
-#include "lib/geometry/camera.h"
-#include "lib/geometry/rigid3d.h"
-#include "lib/raycast/camera_rays.h"
-#include "lib/raycast/geometry_maps.h"
+#include "lib/calibration/board_target.h"
 
 namespace lutex {
 
@@ -44,27 +41,14 @@ struct ChessboardSpec {
 // Throws std::runtime_error naming the file and the key on anything malformed.
 ChessboardSpec ReadChessboardSpec(const std::filesystem::path& path);
 
-struct ChessboardView {
-  // Board frame: origin at the first inner corner OpenCV reports, x along its rows, y down its columns,
-  // z = x cross y; the board lies in z = 0.
-  Rigid3d cam_from_board;
-  double reprojection_rms = 0.0;  // pixels, of the detected corners under the pose
-};
-
 // The board in a linear RGB image (CV_32FC3) of `camera`, or nothing when OpenCV does not find all inner
-// corners. Distorted camera models are handled: the corners are undistorted with the camera before the
-// pose is solved.
-std::optional<ChessboardView> FindChessboard(const cv::Mat& linear_rgb, const Camera& camera,
-                                             const ChessboardSpec& spec);
+// corners. Board frame (board_target.h): origin at the first inner corner OpenCV reports, x along its
+// rows, y down its columns. Distorted camera models are handled (PoseFromBoardPoints).
+std::optional<BoardView> FindChessboard(const cv::Mat& linear_rgb, const Camera& camera, const ChessboardSpec& spec);
 
-// What the board gives a view: depth and normals where rays meet the board (NaN elsewhere), and the
-// known albedo (linear RGB CV_32FC3) on the inner part of every square, NaN elsewhere. `linear_rgb` decides
-// which square parity is black.
-struct ChessboardMaps {
-  GeometryMaps maps;
-  cv::Mat known_albedo;
-};
-ChessboardMaps RenderChessboard(const ChessboardSpec& spec, const ChessboardView& view, const CameraRays& rays,
+// The board's maps in a view (BoardMaps): known albedo on the inner part of every square. `linear_rgb`
+// decides which square parity is black.
+BoardMaps RenderChessboard(const ChessboardSpec& spec, const BoardView& view, const CameraRays& rays,
                                 const cv::Mat& linear_rgb);
 
 }  // namespace lutex

@@ -28,7 +28,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "colmap_integration/simulate_workspace.h"
+#include "lib/geometry/mesh_io.h"
 #include "lib/image/image_io.h"
+#include "tests/support/charuco_board.h"
 #include "tests/support/gltf_validator.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
@@ -153,6 +155,39 @@ class RunTest : public ::testing::Test {
     std::string command;
     for (const std::string& argument : RunArguments(workspace)) command += "'" + argument + "' ";
     return testing::RunCommand(command + extra);
+  }
+
+  // Frames of a board (its mesh at `board_mesh`: centred on the world origin in z = 0, printed side up)
+  // taken with the example's rig looking down from 1.2-2.5 m, the board in the centre and the four
+  // quadrants of the image; `lutex run` calibrates from them (board file `board_file`) and the pure water
+  // and restores a copy of the survey. Returns the restored albedo MAE (pp) and in how many of the 20
+  // frames the board was found.
+  static std::pair<double, int> RunFromBoardFrames(const fs::path& dir, const fs::path& board_mesh,
+                                                   const fs::path& board_file) {
+    nlohmann::json scene = nlohmann::json::parse(std::ifstream(data_->path() / "board.json"));
+    scene["mesh"] = board_mesh.string();
+    scene["poses"] = nlohmann::json::array();
+    for (const double height : {1.2, 1.6, 2.0, 2.5}) {
+      for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {0.35, 0.25}, {-0.35, 0.25}, {0.35, -0.25}, {-0.35, -0.25}}) {
+        // Looking straight down from (x h, y h, h): cam_from_world rotation diag(1, -1, -1).
+        scene["poses"].push_back({{"name", "board_" + std::to_string(scene["poses"].size()) + ".png"},
+                                  {"qvec", {0, 1, 0, 0}},
+                                  {"tvec", {-x * height, y * height, height}}});
+      }
+    }
+    std::ofstream(dir / "board_frames.json") << scene.dump(1);
+    Simulate(dir / "board_frames.json", dir / "board_frames");
+    const fs::path workspace = CopyOfSurvey(dir / "W");
+    const testing::CommandResult run = testing::RunCommand(
+        std::string(LUTEX_BINARY) + " run --workspace " + workspace.string() + " --mesh " +
+        (workspace / "scene" / "mesh.ply").string() + " --chessboard " + board_file.string() +
+        " --chessboard-images " + (dir / "board_frames" / "images").string() + " --pure-water " +
+        (data_->path() / "purewater").string() + " --lut-nx 20 --lut-ny 15 --lut-nz 8 --num-threads 2 --no-report");
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    if (run.exit_code != 0) return {1e9, 0};
+    const nlohmann::json summary =
+        nlohmann::json::parse(std::ifstream(workspace / "lutex" / "calibration" / "calibration_summary.json"));
+    return {RestoredAlbedoError(workspace), summary.at("chessboard_images").get<int>()};
   }
 
   static testing::TempDir* data_;
@@ -293,35 +328,40 @@ TEST_F(RunTest, ChessboardFramesCalibrateTheSurvey) {
       }
     }
   }
-  nlohmann::json scene = nlohmann::json::parse(std::ifstream(data_->path() / "board.json"));
-  scene["mesh"] = (dir.path() / "chessboard.ply").string();
-  scene["poses"] = nlohmann::json::array();
-  for (const double height : {1.2, 1.6, 2.0, 2.5}) {
-    for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0, 0}, {0.35, 0.25}, {-0.35, 0.25}, {0.35, -0.25}, {-0.35, -0.25}}) {
-      // Looking straight down from (x h, y h, h): cam_from_world rotation diag(1, -1, -1).
-      scene["poses"].push_back({{"name", "board_" + std::to_string(scene["poses"].size()) + ".png"},
-                                {"qvec", {0, 1, 0, 0}},
-                                {"tvec", {-x * height, y * height, height}}});
-    }
-  }
-  std::ofstream(dir.path() / "chessboard.json") << scene.dump(1);
-  Simulate(dir.path() / "chessboard.json", dir.path() / "chessboard");
   std::ofstream(dir.path() / "spec.json") << R"({"chessboard": {"inner_corners": [9, 6], "square_size": 0.12,
     "black_albedo_srgb8": [25, 25, 25], "white_albedo_srgb8": [225, 225, 225]}})";
-
-  const fs::path workspace = CopyOfSurvey(dir.path() / "W");
-  const testing::CommandResult run = testing::RunCommand(
-      std::string(LUTEX_BINARY) + " run --workspace " + workspace.string() + " --mesh " +
-      (workspace / "scene" / "mesh.ply").string() + " --chessboard " + (dir.path() / "spec.json").string() +
-      " --chessboard-images " + (dir.path() / "chessboard" / "images").string() + " --pure-water " +
-      (data_->path() / "purewater").string() + " --lut-nx 20 --lut-ny 15 --lut-nz 8 --num-threads 2 --no-report");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const nlohmann::json summary =
-      nlohmann::json::parse(std::ifstream(workspace / "lutex" / "calibration" / "calibration_summary.json"));
-  std::cout << "chessboard found in " << summary.at("chessboard_images").get<int>() << " of 20 frames\n";
-  EXPECT_GE(summary.at("chessboard_images").get<int>(), 14);
-  const double mae = RestoredAlbedoError(workspace);
+  const auto [mae, found] = RunFromBoardFrames(dir.path(), dir.path() / "chessboard.ply", dir.path() / "spec.json");
+  std::cout << "chessboard found in " << found << " of 20 frames\n";
+  EXPECT_GE(found, 14);
   std::cout << "lutex run from a chessboard: restored albedo MAE " << mae << " pp\n";
+  EXPECT_LT(mae, 6.0);
+}
+
+// The same with a ChArUco board of 6 x 4 squares of 0.2 m and six coloured patches (the board file written
+// as a user would: squares, sizes, dictionary, patches in the board frame): the markers make the board
+// found even where part of it is out of view.
+TEST_F(RunTest, CharucoFramesWithColourPatchesCalibrateTheSurvey) {
+  testing::TempDir dir;
+  const CharucoSpec spec = testing::PatchedCharucoSpec(0.2);
+  Mesh board = testing::CharucoBoardMesh(spec);
+  // Centred on the origin; board y along world -y, so the printed side (board -z) faces the cameras above.
+  for (Eigen::Vector3d& vertex : board.vertices) {
+    vertex = Eigen::Vector3d(vertex.x() - 3 * spec.square_size, -(vertex.y() - 2 * spec.square_size), 0.0);
+  }
+  WriteMesh(board, dir.path() / "charuco.ply");
+  nlohmann::json patches = nlohmann::json::array();
+  for (const ColourPatch& patch : spec.patches) {
+    patches.push_back({{"name", patch.name},
+                       {"corners", {patch.min_in_board.x(), patch.min_in_board.y(), patch.max_in_board.x(), patch.max_in_board.y()}},
+                       {"albedo_linear", {patch.albedo.x(), patch.albedo.y(), patch.albedo.z()}}});
+  }
+  std::ofstream(dir.path() / "charuco.json") << nlohmann::json{
+      {"charuco", {{"squares", {6, 4}}, {"square_size", 0.2}, {"marker_size", 0.15}, {"dictionary", "DICT_4X4_50"},
+                   {"black_albedo_srgb8", {25, 25, 25}}, {"patches", patches}}}}.dump(1);
+  const auto [mae, found] = RunFromBoardFrames(dir.path(), dir.path() / "charuco.ply", dir.path() / "charuco.json");
+  std::cout << "ChArUco board found in " << found << " of 20 frames\n";
+  EXPECT_GE(found, 14);
+  std::cout << "lutex run from a ChArUco board: restored albedo MAE " << mae << " pp\n";
   EXPECT_LT(mae, 6.0);
 }
 

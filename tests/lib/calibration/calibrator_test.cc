@@ -21,7 +21,6 @@
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/image/image_io.h"
-#include "lib/model/sensor.h"
 #include "lib/model/simulator.h"
 #include "lib/restoration/restorer.h"
 #include "tests/support/temp_dir.h"
@@ -48,14 +47,7 @@ struct Frame {
 
 Frame Render(const Simulator& simulator, const RaycastScene& scene, const CameraRays& rays, const Rigid3d& pose,
              std::uint64_t index, const testing::TempDir& dir) {
-  SensorOptions sensor;
-  sensor.exposure = 2.0;
-  sensor.shot_noise = 0.01;
-  sensor.read_noise = 0.002;
-  sensor.seed = 5;
-  const auto path = dir.path() / ("frame_" + std::to_string(index) + ".png");
-  WriteLinearImage(ApplySensor(simulator.Render(rays, pose), sensor, index), path, ImageEncoding::kSrgb8);
-  return {ReadLinearImage(path, ImageEncoding::kSrgb8), scene.Render(rays, pose)};
+  return {testing::NoisySrgb8Frame(simulator, rays, pose, index, 5, dir.path()), scene.Render(rays, pose)};
 }
 
 TEST(Calibrator, RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView) {
