@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "colmap_integration/image_encoding_option.h"
-#include "colmap_integration/scene_description.h"
 #include "colmap_integration/workspace.h"
 
 namespace lutex {
@@ -60,12 +59,11 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
                    [options](const std::string& text) {
                      options->shading.light_in_cam = ParseVector3(text, "--shading-light", false);
                    });
-  parser.AddCustom("shading-rig", "",
-                   "FILE: a JSON file with the lights of the rig, \"lights\": [...] as in a scene description\n"
+  parser.AddPath("shading-rig", &options->shading_rig,
+                   "A JSON file with the lights of the rig, \"lights\": [...] as in a scene description\n"
                    "      (positions, axes, beam profiles, powers). Shading then weighs each light by the irradiance\n"
                    "      it gives the point, so alpha no longer depends on the surface's tilt where one light\n"
-                   "      dominates (README, 'Shading'). Replaces --shading-light; recorded in the LUT.",
-                   [options](const std::string& text) { options->shading.rig = ReadLightRig(text); });
+                   "      dominates (README, 'Shading'). Replaces --shading-light; recorded in the LUT.");
   parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
                    "Smoothness weight relative to observations (paper: 0.01); lutex multiplies it per channel by\n"
                    "      the channel's mean observed intensity, so it means the same at any exposure.");

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_integration/images_by_camera.h"
+#include "colmap_integration/scene_description.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "colmap_integration/survey_correspondences.h"
 #include "colmap_integration/workspace.h"
@@ -249,8 +250,11 @@ void CalibrateOptions::Check() const {
   sampling.Check();
 }
 
-CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
-  options.Check();
+CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given) {
+  given.Check();
+  // The rig file, read once: its lights are the shading from here on.
+  CalibrateOptions options = given;
+  if (!options.shading_rig.empty()) options.shading.rig = ReadLightRig(options.shading_rig);
   const Workspace workspace = FindWorkspace(options.workspace);
   const SparseModel model = ReadSparseModel(workspace.sparse_dir);
   const Camera& camera = SingleImageSize(model, workspace.sparse_dir);

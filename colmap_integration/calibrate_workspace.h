@@ -55,6 +55,9 @@ struct CalibrateOptions {
   // How shading treats the lights (lib/model/shading.h): one position (the camera centre, the paper; or a
   // single flash's position) or the light rig. Recorded in the LUT; the reference LUT is lit the same way.
   Shading shading;
+  // A light-rig file ("lights" as in a scene description, scene_description.h); when given, its lights
+  // replace shading.rig.
+  std::filesystem::path shading_rig;
   KnownColorSamplingOptions sampling;
   int pure_water_stride = 8;
   PureWaterScreeningOptions pure_water_screening;

@@ -163,6 +163,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
     if (!calibrate.targets_workspace.empty()) AddOtherWorkspace(&record, calibrate.targets_workspace);
     if (!calibrate.targets_mesh.empty()) record.AddFile(calibrate.targets_mesh);
     if (!calibrate.chessboard.empty()) record.AddFile(calibrate.chessboard);
+    if (!calibrate.shading_rig.empty()) record.AddFile(calibrate.shading_rig);
     if (!calibrate.chessboard_images.empty()) AddFolder(&record, calibrate.chessboard_images);
     if (!calibrate.pure_water.empty()) AddOtherWorkspace(&record, calibrate.pure_water);
     record.AddOutput(summary.lut);
