@@ -66,7 +66,8 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
                    "      dominates (README, 'Shading'). Replaces --shading-light; recorded in the LUT.");
   parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
                    "Smoothness weight relative to observations (paper: 0.01); lutex multiplies it per channel by\n"
-                   "      the channel's mean observed intensity, so it means the same at any exposure.");
+                   "      the channel's mean observed intensity over the brightest channel's, so a dark channel is\n"
+                   "      not regularised harder than a bright one.");
   parser.AddDouble("z-near", &options->z_near, "Nearest slab's planar depth (scene units).");
   parser.AddDouble("z-far", &options->z_far, "Farthest slab's planar depth.");
 }

@@ -3,7 +3,8 @@
 // `lutex calibrate`: fits the LUT of a camera-and-lights rig from
 //   - targets of known colour (targets file, see lib/calibration/targets.h) seen in the workspace's images
 //     or in separate calibration images (their own COLMAP model and mesh of the targets);
-//   - a black-and-white chessboard in a folder of images of the same camera (no model or mesh needed);
+//   - a black-and-white chessboard or a ChArUco board with coloured patches in a folder of images of the
+//     same camera (no model or mesh needed);
 //   - correspondences between the workspace's own survey images (survey_correspondences.h), with or
 //     without targets; without, the absolute scale comes from a grey-world albedo the user gives;
 //   - optionally pure-water images (beta upper bounds).

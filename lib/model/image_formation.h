@@ -28,12 +28,9 @@ struct ImageFormationOptions {
 };
 
 // cos_theta with the light at `light_in_cam`: normal . (light - point) / |light - point|. Negative for
-// back faces. Scalar: double, or float where it runs per pixel of every image (restoration).
-template <typename Scalar>
-Scalar ShadingCosine(const Eigen::Matrix<Scalar, 3, 1>& point_in_cam, const Eigen::Matrix<Scalar, 3, 1>& normal_in_cam,
-                     const Eigen::Matrix<Scalar, 3, 1>& light_in_cam = Eigen::Matrix<Scalar, 3, 1>::Zero()) {
-  return normal_in_cam.normalized().dot((light_in_cam - point_in_cam).normalized());
-}
+// back faces. (Shading, lib/model/shading.h, is what calibration and restoration call.)
+double ShadingCosine(const Eigen::Vector3d& point_in_cam, const Eigen::Vector3d& normal_in_cam,
+                     const Eigen::Vector3d& light_in_cam = Eigen::Vector3d::Zero());
 
 Eigen::Vector3d PredictIntensity(const Eigen::Vector3d& alpha, const Eigen::Vector3d& beta, double cos_theta,
                                  const Eigen::Vector3d& albedo);
