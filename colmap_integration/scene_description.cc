@@ -63,21 +63,20 @@ Light ParseLight(const json& object, const std::string& where) {
   }
   light.intensity = Vector3(object, "intensity", where, light.intensity);
   const std::string profile = Text(object, "profile", where, "isotropic");
-  if (profile == "isotropic") {
-    light.profile = BeamProfile::kIsotropic;
-  } else if (profile == "cosine_power") {
-    light.profile = BeamProfile::kCosinePower;
-    light.exponent = Number(object, "exponent", where, 1.0);
-  } else if (profile == "gaussian") {
-    light.profile = BeamProfile::kGaussian;
-    light.sigma_rad = Number(object, "sigma_deg", where, 30.0) * M_PI / 180.0;
-  } else if (profile == "cycles_spot") {
-    light.profile = BeamProfile::kCyclesSpot;
-    light.spot_size_rad = Number(object, "spot_size_deg", where, 110.0) * M_PI / 180.0;
-    light.spot_blend = Number(object, "spot_blend", where, 0.5);
-  } else {
+  const std::optional<BeamProfile> known = BeamProfileFromName(profile);
+  if (!known) {
     throw DescriptionError(where + ".profile '" + profile +
                            "' is not isotropic, cosine_power, gaussian or cycles_spot");
+  }
+  light.profile = *known;
+  switch (light.profile) {
+    case BeamProfile::kIsotropic: break;
+    case BeamProfile::kCosinePower: light.exponent = Number(object, "exponent", where, 1.0); break;
+    case BeamProfile::kGaussian: light.sigma_rad = Number(object, "sigma_deg", where, 30.0) * M_PI / 180.0; break;
+    case BeamProfile::kCyclesSpot:
+      light.spot_size_rad = Number(object, "spot_size_deg", where, 110.0) * M_PI / 180.0;
+      light.spot_blend = Number(object, "spot_blend", where, 0.5);
+      break;
   }
   if ((light.intensity.array() < 0).any()) throw DescriptionError(where + ".intensity must not be negative");
   return light;

@@ -1,6 +1,7 @@
 #include "lib/lut/lut_file.h"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -16,20 +17,10 @@ constexpr const char* kMagic = "LUTEX-LUT 1";
 constexpr const char* kMagicWithRig = "LUTEX-LUT 2";
 constexpr const char* kLayout = "slab k, then row j, then column i; per node alpha_r alpha_g alpha_b beta_r beta_g beta_b";
 
-const char* ProfileName(BeamProfile profile) {
-  switch (profile) {
-    case BeamProfile::kIsotropic: return "isotropic";
-    case BeamProfile::kCosinePower: return "cosine_power";
-    case BeamProfile::kGaussian: return "gaussian";
-    case BeamProfile::kCyclesSpot: return "cycles_spot";
-  }
-  return "isotropic";
-}
-
 nlohmann::json LightToJson(const Light& light) {
   const auto vector = [](const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
   return {{"position", vector(light.position_in_cam)}, {"direction", vector(light.direction_in_cam)},
-          {"intensity", vector(light.intensity)}, {"profile", ProfileName(light.profile)},
+          {"intensity", vector(light.intensity)}, {"profile", BeamProfileName(light.profile)},
           {"exponent", light.exponent}, {"sigma_rad", light.sigma_rad},
           {"spot_size_rad", light.spot_size_rad}, {"spot_blend", light.spot_blend}};
 }
@@ -44,15 +35,9 @@ Light LightFromJson(const nlohmann::json& object) {
   light.direction_in_cam = vector("direction");
   light.intensity = vector("intensity");
   const std::string profile = object.at("profile").get<std::string>();
-  bool known = false;
-  for (const BeamProfile candidate : {BeamProfile::kIsotropic, BeamProfile::kCosinePower, BeamProfile::kGaussian,
-                                      BeamProfile::kCyclesSpot}) {
-    if (profile == ProfileName(candidate)) {
-      light.profile = candidate;
-      known = true;
-    }
-  }
+  const std::optional<BeamProfile> known = BeamProfileFromName(profile);
   if (!known) throw std::runtime_error("unknown light profile '" + profile + "' in shading_rig");
+  light.profile = *known;
   light.exponent = object.at("exponent").get<double>();
   light.sigma_rad = object.at("sigma_rad").get<double>();
   light.spot_size_rad = object.at("spot_size_rad").get<double>();

@@ -16,6 +16,24 @@ double CyclesSpotProfile(double cos_psi, double spot_size_rad, double spot_blend
   return cos_psi;
 }
 
+const char* BeamProfileName(BeamProfile profile) {
+  switch (profile) {
+    case BeamProfile::kIsotropic: return "isotropic";
+    case BeamProfile::kCosinePower: return "cosine_power";
+    case BeamProfile::kGaussian: return "gaussian";
+    case BeamProfile::kCyclesSpot: return "cycles_spot";
+  }
+  return "isotropic";
+}
+
+std::optional<BeamProfile> BeamProfileFromName(const std::string& name) {
+  for (const BeamProfile profile : {BeamProfile::kIsotropic, BeamProfile::kCosinePower, BeamProfile::kGaussian,
+                                    BeamProfile::kCyclesSpot}) {
+    if (name == BeamProfileName(profile)) return profile;
+  }
+  return std::nullopt;
+}
+
 double Light::Profile(double cos_psi) const {
   switch (profile) {
     case BeamProfile::kIsotropic: return 1.0;

@@ -6,6 +6,7 @@
 // rho / pi * I * f(psi) * cos(i) / d^2 (in air), with f the angular profile at angle psi from the axis.
 // A Cycles point or spot light of power P [W] has I = P / (4 pi).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,11 @@ struct Light {
   // f(psi) for cos(psi) = cos_psi.
   double Profile(double cos_psi) const;
 };
+
+// The profile's name in files (scene descriptions, LUT headers): "isotropic", "cosine_power", "gaussian",
+// "cycles_spot"; and back, nothing for an unknown name.
+const char* BeamProfileName(BeamProfile profile);
+std::optional<BeamProfile> BeamProfileFromName(const std::string& name);
 
 // Blender 3.4 Cycles spot profile: c0 = cos(size / 2), smooth = (1 - c0) * blend; 0 if cos psi <= c0,
 // else cos psi * smoothstep((cos psi - c0) / smooth) while cos psi - c0 < smooth, else cos psi.
