@@ -10,6 +10,7 @@
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "lib/calibration/board_albedo_json.h"
 #include "lib/image/image_io.h"
 
 namespace lutex {
@@ -36,22 +37,6 @@ cv::Ptr<cv::aruco::Dictionary> Dictionary(const std::string& name) {
 cv::Ptr<cv::aruco::CharucoBoard> Board(const CharucoSpec& spec) {
   return cv::aruco::CharucoBoard::create(spec.squares_x, spec.squares_y, static_cast<float>(spec.square_size),
                                          static_cast<float>(spec.marker_size), Dictionary(spec.dictionary));
-}
-
-Eigen::Vector3d ReadAlbedo(const nlohmann::json& object, const std::string& prefix) {
-  const bool linear = object.contains(prefix + "_linear");
-  const std::string key = prefix + (linear ? "_linear" : "_srgb8");
-  const auto values = object.at(key).get<std::vector<double>>();
-  if (values.size() != 3) throw std::runtime_error(key + " must have 3 values");
-  Eigen::Vector3d albedo;
-  for (int c = 0; c < 3; ++c) {
-    const double limit = linear ? 1.0 : 255.0;
-    if (!(values[c] >= 0.0 && values[c] <= limit)) {
-      throw std::runtime_error(key + " must be in [0, " + (linear ? std::string("1") : std::string("255")) + "]");
-    }
-    albedo[c] = linear ? values[c] : SrgbToLinear(values[c] / 255.0);
-  }
-  return albedo;
 }
 
 }  // namespace
@@ -94,7 +79,7 @@ CharucoSpec ReadCharucoSpec(const std::filesystem::path& path) {
     spec.square_size = board.at("square_size").get<double>();
     spec.marker_size = board.at("marker_size").get<double>();
     spec.dictionary = board.value("dictionary", spec.dictionary);
-    spec.black_albedo = ReadAlbedo(board, "black_albedo");
+    spec.black_albedo = ReadBoardAlbedo(board, "black_albedo");
     for (const nlohmann::json& entry : board.value("patches", nlohmann::json::array())) {
       ColourPatch patch;
       patch.name = entry.value("name", "patch " + std::to_string(spec.patches.size() + 1));
@@ -102,7 +87,7 @@ CharucoSpec ReadCharucoSpec(const std::filesystem::path& path) {
       if (corners.size() != 4) throw std::runtime_error("patch '" + patch.name + "': corners must be [x0, y0, x1, y1]");
       patch.min_in_board = Eigen::Vector2d(corners[0], corners[1]);
       patch.max_in_board = Eigen::Vector2d(corners[2], corners[3]);
-      patch.albedo = ReadAlbedo(entry, "albedo");
+      patch.albedo = ReadBoardAlbedo(entry, "albedo");
       spec.patches.push_back(patch);
     }
     spec.Check();

@@ -14,29 +14,10 @@
 
 #include <Eigen/Geometry>
 
+#include "lib/calibration/board_albedo_json.h"
 #include "lib/image/image_io.h"
 
 namespace lutex {
-
-namespace {
-
-Eigen::Vector3d ReadAlbedo(const nlohmann::json& board, const std::string& colour) {
-  if (board.contains(colour + "_albedo_linear")) {
-    const auto values = board.at(colour + "_albedo_linear").get<std::vector<double>>();
-    if (values.size() != 3) throw std::runtime_error(colour + "_albedo_linear must have 3 values");
-    return Eigen::Vector3d(values[0], values[1], values[2]);
-  }
-  const auto values = board.at(colour + "_albedo_srgb8").get<std::vector<double>>();
-  if (values.size() != 3) throw std::runtime_error(colour + "_albedo_srgb8 must have 3 values");
-  Eigen::Vector3d albedo;
-  for (int c = 0; c < 3; ++c) {
-    if (!(values[c] >= 0.0 && values[c] <= 255.0)) throw std::runtime_error(colour + "_albedo_srgb8 must be in [0, 255]");
-    albedo[c] = SrgbToLinear(values[c] / 255.0);
-  }
-  return albedo;
-}
-
-}  // namespace
 
 void ChessboardSpec::Check() const {
   if (inner_corners_x < 3 || inner_corners_y < 3) {
@@ -64,8 +45,8 @@ ChessboardSpec ReadChessboardSpec(const std::filesystem::path& path) {
     spec.inner_corners_x = corners[0];
     spec.inner_corners_y = corners[1];
     spec.square_size = board.at("square_size").get<double>();
-    spec.black_albedo = ReadAlbedo(board, "black");
-    spec.white_albedo = ReadAlbedo(board, "white");
+    spec.black_albedo = ReadBoardAlbedo(board, "black_albedo");
+    spec.white_albedo = ReadBoardAlbedo(board, "white_albedo");
     spec.Check();
   } catch (const std::exception& error) {
     throw std::runtime_error(path.string() + ": " + error.what());
