@@ -148,7 +148,48 @@ struct PixelHit {
   float distance = 0.0f;  // along the unit ray
   int face = -1;
   float b1 = 0.0f, b2 = 0.0f;
-  Eigen::Vector3f normal_in_world = Eigen::Vector3f::Zero();  // not normalised
+  Eigen::Vector3f unit_normal_in_cam = Eigen::Vector3f::Zero();  // either orientation
+};
+
+// A triangle prepared for intersecting many rays of one camera pose, in the camera frame: the ray
+// x = t d (d a unit direction) meets its plane at t = offset / (normal . d), at barycentrics
+// (dual1 . (x - p0), dual2 . (x - p0)), dual1 and dual2 being the dual basis of the edges in the plane.
+struct FacePlane {
+  int face = -1;  // -1: degenerate (no area)
+  Eigen::Vector3d p0, normal, dual1, dual2;
+  double offset = 0.0;
+  Eigen::Vector3f unit_normal;
+
+  FacePlane() = default;
+  FacePlane(int face_id, const Eigen::Vector3d& v0_in_cam, const Eigen::Vector3d& v1_in_cam,
+            const Eigen::Vector3d& v2_in_cam)
+      : p0(v0_in_cam) {
+    const Eigen::Vector3d e1 = v1_in_cam - p0, e2 = v2_in_cam - p0;
+    normal = e1.cross(e2);
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+    const double determinant = d11 * d22 - d12 * d12;
+    if (!(determinant > 0.0) || !(normal.squaredNorm() > 0.0)) return;
+    face = face_id;
+    offset = normal.dot(p0);
+    dual1 = (d22 * e1 - d12 * e2) / determinant;
+    dual2 = (d11 * e2 - d12 * e1) / determinant;
+    unit_normal = normal.normalized().cast<float>();
+  }
+
+  PixelHit Intersect(const Eigen::Vector3f& direction_in_cam) const {
+    PixelHit hit;
+    const Eigen::Vector3d direction = direction_in_cam.cast<double>();
+    const double along = normal.dot(direction);
+    if (face < 0 || along == 0.0) return hit;
+    const double t = offset / along;
+    const Eigen::Vector3d from_p0 = t * direction - p0;
+    hit.distance = static_cast<float>(t);
+    hit.face = face;
+    hit.b1 = static_cast<float>(dual1.dot(from_p0));
+    hit.b2 = static_cast<float>(dual2.dot(from_p0));
+    hit.unit_normal_in_cam = unit_normal;
+    return hit;
+  }
 };
 
 }  // namespace
@@ -161,13 +202,14 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
   const int width = rays.width();
   const int height = rays.height();
   const float nan = std::numeric_limits<float>::quiet_NaN();
+  // Every pixel is written exactly once (a hit or a miss), so the maps need no initial values.
   GeometryMaps maps;
-  maps.depth = cv::Mat(height, width, CV_32F, cv::Scalar(nan));
-  if (options.normal) maps.normal = cv::Mat(height, width, CV_32FC3, cv::Scalar::all(nan));
-  if (options.face_id) maps.face_id = cv::Mat(height, width, CV_32S, cv::Scalar(-1));
-  if (options.barycentrics) maps.barycentrics = cv::Mat(height, width, CV_32FC2, cv::Scalar::all(nan));
+  maps.depth.create(height, width, CV_32F);
+  if (options.normal) maps.normal.create(height, width, CV_32FC3);
+  if (options.face_id) maps.face_id.create(height, width, CV_32S);
+  if (options.barycentrics) maps.barycentrics.create(height, width, CV_32FC2);
   // Face of every pixel, also when the caller did not ask for face ids (the adaptive pass needs them).
-  cv::Mat faces(height, width, CV_32S, cv::Scalar(-1));
+  cv::Mat faces(height, width, CV_32S);
 
   const Eigen::Matrix3f cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix().cast<float>();
   const Eigen::Matrix3f world_from_cam_rotation = cam_from_world_rotation.transpose();
@@ -176,15 +218,20 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
 
   const auto write = [&](int col, int row, const PixelHit& hit) {
     faces.at<int>(row, col) = hit.face;
-    if (hit.face < 0) return;
+    if (options.face_id) maps.face_id.at<int>(row, col) = hit.face;
+    if (hit.face < 0) {
+      maps.depth.at<float>(row, col) = nan;
+      if (options.normal) maps.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(nan, nan, nan);
+      if (options.barycentrics) maps.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(nan, nan);
+      return;
+    }
     const Eigen::Vector3f& direction_in_cam = rays.Direction(col, row);
     maps.depth.at<float>(row, col) = hit.distance * direction_in_cam.z();
     if (options.normal) {
-      Eigen::Vector3f normal_in_cam = (cam_from_world_rotation * hit.normal_in_world).normalized();
+      Eigen::Vector3f normal_in_cam = hit.unit_normal_in_cam;
       if (normal_in_cam.dot(direction_in_cam) > 0.0f) normal_in_cam = -normal_in_cam;
       maps.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
     }
-    if (options.face_id) maps.face_id.at<int>(row, col) = hit.face;
     if (options.barycentrics) maps.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(hit.b1, hit.b2);
   };
 
@@ -211,34 +258,58 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
         hit.face = static_cast<int>(packet.hit.primID[lane]);
         hit.b1 = packet.hit.u[lane];
         hit.b2 = packet.hit.v[lane];
-        hit.normal_in_world = Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]);
+        hit.unit_normal_in_cam =
+            (cam_from_world_rotation * Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]))
+                .normalized();
       }
       write(pixels[lane].first, pixels[lane].second, hit);
     }
   };
 
-  // The exact intersection of a pixel's ray with the plane of `face` (known to contain the hit).
-  const auto intersect_plane = [&](int col, int row, int face) {
+  // The triangle `face` prepared for this pose.
+  const Eigen::Matrix3d cam_from_world_rotation_d = cam_from_world.rotation.toRotationMatrix();
+  const auto prepare = [&](int face) {
     const Mesh::Face& corners = impl_->faces[static_cast<std::size_t>(face)];
-    const Eigen::Vector3d& p0 = impl_->local_vertices[corners[0]];
-    const Eigen::Vector3d e1 = impl_->local_vertices[corners[1]] - p0;
-    const Eigen::Vector3d e2 = impl_->local_vertices[corners[2]] - p0;
-    const Eigen::Vector3d normal = e1.cross(e2);
-    const Eigen::Vector3d direction = (world_from_cam_rotation * rays.Direction(col, row)).cast<double>();
-    PixelHit hit;
-    const double along = normal.dot(direction);
-    if (along == 0.0) return hit;
-    const double t = normal.dot(p0 - centre_local) / along;
-    const Eigen::Vector3d offset = centre_local + t * direction - p0;
-    // Barycentrics from the 2x2 system of dot products.
-    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), q1 = offset.dot(e1), q2 = offset.dot(e2);
-    const double determinant = d11 * d22 - d12 * d12;
-    hit.distance = static_cast<float>(t);
-    hit.face = face;
-    hit.b1 = static_cast<float>((d22 * q1 - d12 * q2) / determinant);
-    hit.b2 = static_cast<float>((d11 * q2 - d12 * q1) / determinant);
-    hit.normal_in_world = normal.cast<float>();
-    return hit;
+    const auto in_cam = [&](std::uint32_t vertex) {
+      return Eigen::Vector3d(cam_from_world_rotation_d * (impl_->local_vertices[vertex] - centre_local));
+    };
+    return FacePlane(face, in_cam(corners[0]), in_cam(corners[1]), in_cam(corners[2]));
+  };
+
+  // The hit of a pixel between four samples, from the faces the samples hit, without casting. When all
+  // four hit one triangle: its plane (the pixel's ray lies between theirs, so it meets that triangle too).
+  // When they hit up to four triangles that pairwise share a vertex (one piece of surface across an edge
+  // or around a vertex): the nearest of them whose triangle the pixel's ray meets. Otherwise no hit
+  // (face -1), and the pixel is cast.
+  const auto share_vertex = [&](int face_a, int face_b) {
+    const Mesh::Face& a = impl_->faces[static_cast<std::size_t>(face_a)];
+    const Mesh::Face& b = impl_->faces[static_cast<std::size_t>(face_b)];
+    return std::any_of(a.begin(), a.end(), [&](auto vertex) { return std::find(b.begin(), b.end(), vertex) != b.end(); });
+  };
+  // `plane_of(face)` gives the prepared FacePlane of a face.
+  const auto hit_among_corner_faces = [&](const std::array<int, 4>& corners, const Eigen::Vector3f& direction_in_cam,
+                                          auto& plane_of) {
+    if (std::any_of(corners.begin(), corners.end(), [](int face) { return face < 0; })) return PixelHit{};
+    if (std::all_of(corners.begin(), corners.end(), [&](int face) { return face == corners[0]; })) {
+      return plane_of(corners[0]).Intersect(direction_in_cam);
+    }
+    std::array<int, 4> distinct{};
+    int count = 0;
+    for (const int face : corners) {
+      if (std::find(distinct.begin(), distinct.begin() + count, face) == distinct.begin() + count) distinct[count++] = face;
+    }
+    for (int i = 0; i < count; ++i) {
+      for (int j = i + 1; j < count; ++j) {
+        if (!share_vertex(distinct[i], distinct[j])) return PixelHit{};
+      }
+    }
+    PixelHit nearest;
+    for (int i = 0; i < count; ++i) {
+      const PixelHit hit = plane_of(distinct[i]).Intersect(direction_in_cam);
+      const bool inside = hit.face >= 0 && hit.distance > 0.0f && hit.b1 >= 0.0f && hit.b2 >= 0.0f && hit.b1 + hit.b2 <= 1.0f;
+      if (inside && (nearest.face < 0 || hit.distance < nearest.distance)) nearest = hit;
+    }
+    return nearest;
   };
 
   const int step = options.adaptive ? 2 : 1;
@@ -284,13 +355,25 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
     const auto [row0, row1] = rows_around[row_index];
     std::array<std::pair<int, int>, 16> pending;
     int count = 0;
+    // The triangles this row met last, prepared (neighbouring pixels meet the same few).
+    std::array<FacePlane, 8> recent;
+    std::size_t next_slot = 0;
+    const auto plane_of = [&](int face) -> const FacePlane& {
+      for (const FacePlane& plane : recent) {
+        if (plane.face == face) return plane;
+      }
+      FacePlane& slot = recent[next_slot++ % recent.size()];
+      slot = prepare(face);
+      return slot;
+    };
     for (int col = 0; col < width; ++col) {
       const auto [col0, col1] = cols_around[static_cast<std::size_t>(col)];
       if (row0 == row && row1 == row && col0 == col && col1 == col) continue;  // a sample
-      const int face = faces.at<int>(row0, col0);
-      if (face >= 0 && faces.at<int>(row0, col1) == face && faces.at<int>(row1, col0) == face &&
-          faces.at<int>(row1, col1) == face) {
-        write(col, row, intersect_plane(col, row, face));
+      const std::array<int, 4> corners = {faces.at<int>(row0, col0), faces.at<int>(row0, col1),
+                                          faces.at<int>(row1, col0), faces.at<int>(row1, col1)};
+      const PixelHit hit = hit_among_corner_faces(corners, rays.Direction(col, row), plane_of);
+      if (hit.face >= 0) {
+        write(col, row, hit);
         continue;
       }
       pending[count++] = {col, row};
