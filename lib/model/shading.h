@@ -28,6 +28,9 @@ struct Shading {
 
   // cos_theta; negative for back faces with one light position, 0 with a rig.
   double Cosine(const Eigen::Vector3d& point_in_cam, const Eigen::Vector3d& normal_in_cam) const;
+  // The same in float for a unit normal (restoration: every pixel of every image), equal to float
+  // precision.
+  float Cosine(const Eigen::Vector3f& point_in_cam, const Eigen::Vector3f& unit_normal_in_cam) const;
   bool operator==(const Shading& other) const;
 };
 

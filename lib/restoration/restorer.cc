@@ -47,8 +47,8 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
   const float squared_snr = static_cast<float>(options.signal_to_noise * options.signal_to_noise);
   const float saturation_level = static_cast<float>(options.saturation_level);
   RestoredImage restored;
-  restored.albedo = cv::Mat(image.size(), CV_32FC3, cv::Scalar::all(0));
-  restored.confidence = cv::Mat(image.size(), CV_32FC3, cv::Scalar::all(0));
+  restored.albedo.create(image.size(), CV_32FC3);
+  restored.confidence.create(image.size(), CV_32FC3);
   for (int row = 0; row < image.rows; ++row) {
     const float* depth_row = maps.depth.ptr<float>(row);
     const cv::Vec3f* normal_row = maps.normal.ptr<cv::Vec3f>(row);
@@ -56,12 +56,12 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
     cv::Vec3f* albedo_row = restored.albedo.ptr<cv::Vec3f>(row);
     cv::Vec3f* confidence_row = restored.confidence.ptr<cv::Vec3f>(row);
     for (int col = 0; col < image.cols; ++col) {
+      albedo_row[col] = confidence_row[col] = cv::Vec3f(0.0f, 0.0f, 0.0f);
       const float depth = depth_row[col];
       if (std::isnan(depth)) continue;
       const Eigen::Vector3f& direction = rays.Direction(col, row);
-      const Eigen::Vector3d point = ((depth / direction.z()) * direction).cast<double>();
-      const Eigen::Vector3d normal(normal_row[col][0], normal_row[col][1], normal_row[col][2]);
-      const float cos_theta = static_cast<float>(shading.Cosine(point, normal));
+      const Eigen::Vector3f point = (depth / direction.z()) * direction;
+      const float cos_theta = shading.Cosine(point, Eigen::Vector3f(normal_row[col][0], normal_row[col][1], normal_row[col][2]));
       const float grazing = GrazingConfidence(cos_theta, options.model);
       const LutPixelSample lut_here = sampler.At(col, row, depth);
       for (int c = 0; c < 3; ++c) {

@@ -90,5 +90,22 @@ TEST(Shading, OutsideEveryConeFallsBackToTheCameraCentre) {
   EXPECT_NEAR(with_rig.Cosine(point, normal), Shading().Cosine(point, normal), 1e-12);
 }
 
+// Restoration's float cosine equals the double one to float precision, with one position and with a rig,
+// over points across a frustum and tilted normals.
+TEST(Shading, FloatCosineEqualsDoubleCosine) {
+  Shading flash, with_rig;
+  flash.light_in_cam = Eigen::Vector3d(0.1, -0.05, 0);
+  with_rig.rig = TwoSpots();
+  for (const Shading* shading : {&flash, &with_rig}) {
+    for (const double x : {-1.0, 0.0, 0.7}) {
+      for (const double z : {0.5, 2.0, 6.0}) {
+        const Eigen::Vector3d point(x * z, 0.3 * z, z), normal = Eigen::Vector3d(0.3, -0.2, -1).normalized();
+        EXPECT_NEAR(shading->Cosine(Eigen::Vector3f(point.cast<float>()), Eigen::Vector3f(normal.cast<float>())),
+                    shading->Cosine(point, normal), 1e-6);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lutex
