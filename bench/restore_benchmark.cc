@@ -2,8 +2,9 @@
 // workspace of N 8-bit sRGB PNG images (default 24 of 1280 x 960), then (a) decode + encode every image
 // (read, linearise, encode, write: what any tool that touches the images pays), (a') the same writing
 // two images per input (the I/O restore cannot avoid) and (b) `lutex restore`
-// (read, ray-cast, look up, restore, write image and confidence map). Reports both and the ratio. Not a
-// test.
+// (read, ray-cast, look up, restore, write image and confidence map). Reports both and the ratio, then
+// where restore's time goes: every stage timed on its own on one thread (read, ray cast, restore
+// arithmetic, write image, write confidence map). Not a test.
 //
 //   restore_benchmark [--images 24] [--width 1280] [--num-threads 0]
 
@@ -15,9 +16,13 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
+#include "colmap_integration/confidence_map_io.h"
 #include "colmap_integration/restore_workspace.h"
 #include "colmap_integration/sparse_model_io.h"
 #include "lib/image/image_io.h"
+#include "lib/geometry/mesh_io.h"
+#include "lib/lut/lut_file.h"
+#include "lib/raycast/raycast_scene.h"
 #include "lib/util/parallel_for.h"
 
 int main(int argc, char** argv) {
@@ -67,6 +72,37 @@ int main(int argc, char** argv) {
   RestoreWorkspace(restore);
   const double restored = bench::SecondsSince(start);
 
+  // The stages of restore on one thread, each timed on its own over the same images.
+  const Mesh mesh = ReadMesh(restore.mesh);
+  const RaycastScene scene(mesh);
+  const FrustumLut lut = ReadLut(restore.lut);
+  const CameraRays rays(model.cameras.begin()->second, 1);
+  GeometryMapsOptions maps_options;
+  maps_options.face_id = false;
+  maps_options.num_threads = 1;
+  double read = 0.0, cast = 0.0, arithmetic = 0.0, write = 0.0, write_confidence = 0.0;
+  for (const Image* image : list) {
+    start = std::chrono::steady_clock::now();
+    const cv::Mat linear = ReadLinearImage(root / "W" / "images" / image->name, ImageEncoding::kSrgb8);
+    read += bench::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    const GeometryMaps maps = scene.Render(rays, image->cam_from_world, maps_options);
+    cast += bench::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    const RestoredImage result = RestoreImage(linear, maps, rays, lut, restore.restoration);
+    arithmetic += bench::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    WriteLinearImage(result.albedo, root / "stages" / image->name, ImageEncoding::kSrgb8);
+    write += bench::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    WriteConfidenceMap(result.confidence, root / "stages_confidence" / image->name);
+    write_confidence += bench::SecondsSince(start);
+  }
+  const double stages = read + cast + arithmetic + write + write_confidence;
+  const auto share = [&](const char* name, double seconds) {
+    std::cout << "  " << name << ": " << seconds / images << " s per image (" << 100.0 * seconds / stages << " %)\n";
+  };
+
   std::cout << images << " images of " << width << "x" << height << ", " << num_threads << " threads\n"
             << "decode + encode: " << plain << " s (" << plain / images << " s per image)\n"
             << "decode + encode twice (restore's own I/O: image and confidence map): " << two_outputs << " s ("
@@ -74,7 +110,15 @@ int main(int argc, char** argv) {
             << "lutex restore (incl. reading mesh and LUT, BVH, confidence maps): " << restored << " s ("
             << restored / images << " s per image)\n"
             << "ratio restore / plain I/O: " << restored / plain << "\n"
-            << "ratio restore / restore's own I/O: " << restored / two_outputs << "\n";
+            << "ratio restore / restore's own I/O: " << restored / two_outputs << "\n"
+            << "restore's stages, one thread:\n";
+  share("read and linearise", read);
+  share("ray cast (depth, normal)", cast);
+  share("restore (LUT lookup, albedo, confidence)", arithmetic);
+  share("write restored image", write);
+  share("write confidence map", write_confidence);
+  std::cout << "ratio all stages / (read + write restored image): " << stages / (read + write) << "\n"
+            << "ratio all stages / (read + write both images): " << stages / (read + write + write_confidence) << "\n";
   fs::remove_all(root);
   return 0;
 }
