@@ -42,42 +42,64 @@ LutImageSampler::LutImageSampler(const FrustumLut& lut, const FrustumLut* covera
   }
 }
 
-LutPixelSample LutImageSampler::At(int col, int row, float z) const {
-  const Axis& x = columns_[static_cast<std::size_t>(col)];
+void LutImageSampler::PrepareRow(int row, RowSampler* sampler) const {
   const Axis& y = rows_[static_cast<std::size_t>(row)];
-  const float depth_term = grid_.spacing == DepthSpacing::kUniformZ ? z : -1.0f / std::max(z, 1e-12f);
-  const float slab = std::clamp((depth_term - depth_offset_) * depth_scale_, 0.0f, static_cast<float>(grid_.nz - 1));
-  const int k0 = std::min(static_cast<int>(slab), std::max(grid_.nz - 2, 0));
-  const float fz = slab - static_cast<float>(k0);
-  const int k1 = std::min(k0 + 1, grid_.nz - 1);
-
-  const int stride_y = grid_.NodesX(), stride_z = grid_.NodesX() * grid_.NodesY();
-  const int base = y.lower * stride_y + x.lower;
-  const std::array<int, 8> index = {base + k0 * stride_z,           base + 1 + k0 * stride_z,
-                                    base + stride_y + k0 * stride_z, base + stride_y + 1 + k0 * stride_z,
-                                    base + k1 * stride_z,           base + 1 + k1 * stride_z,
-                                    base + stride_y + k1 * stride_z, base + stride_y + 1 + k1 * stride_z};
-  const float wx0 = 1.0f - x.fraction, wy0 = 1.0f - y.fraction, wz0 = 1.0f - fz;
-  const std::array<float, 8> weight = {wx0 * wy0 * wz0,      x.fraction * wy0 * wz0,      wx0 * y.fraction * wz0,
-                                       x.fraction * y.fraction * wz0, wx0 * wy0 * fz, x.fraction * wy0 * fz,
-                                       wx0 * y.fraction * fz, x.fraction * y.fraction * fz};
-  LutPixelSample sample;
-  sample.coverage = has_coverage_ ? std::array<float, 3>{0.f, 0.f, 0.f} : std::array<float, 3>{1.f, 1.f, 1.f};
-  for (int corner = 0; corner < 8; ++corner) {
-    const PackedNode& node = nodes_[static_cast<std::size_t>(index[corner])];
-    for (int c = 0; c < 3; ++c) {
-      sample.alpha[c] += weight[corner] * node.alpha[c];
-      sample.beta[c] += weight[corner] * node.beta[c];
-      if (has_coverage_) sample.coverage[c] += weight[corner] * node.coverage[c];
+  const int nodes_x = grid_.NodesX(), upper = std::min(y.lower + 1, grid_.NodesY() - 1);
+  const int stride_z = nodes_x * grid_.NodesY();
+  sampler->image_ = this;
+  sampler->nodes_.resize(static_cast<std::size_t>(nodes_x * grid_.nz));
+  for (int k = 0; k < grid_.nz; ++k) {
+    for (int i = 0; i < nodes_x; ++i) {
+      const PackedNode& low = nodes_[static_cast<std::size_t>(k * stride_z + y.lower * nodes_x + i)];
+      const PackedNode& high = nodes_[static_cast<std::size_t>(k * stride_z + upper * nodes_x + i)];
+      PackedNode& blended = sampler->nodes_[static_cast<std::size_t>(k * nodes_x + i)];
+      for (int c = 0; c < 3; ++c) {
+        blended.alpha[c] = low.alpha[c] + y.fraction * (high.alpha[c] - low.alpha[c]);
+        blended.beta[c] = low.beta[c] + y.fraction * (high.beta[c] - low.beta[c]);
+        blended.coverage[c] = low.coverage[c] + y.fraction * (high.coverage[c] - low.coverage[c]);
+      }
     }
   }
-  if (inverse_square_) {
-    const float clamped_z = grid_.nz == 1 ? static_cast<float>(grid_.z_near)
-                                          : std::clamp(z, static_cast<float>(grid_.z_near), static_cast<float>(grid_.z_far));
+}
+
+LutPixelSample LutImageSampler::RowSampler::At(int col, float z) const {
+  const LutImageSampler& image = *image_;
+  const FrustumLutGrid& grid = image.grid_;
+  const Axis& x = image.columns_[static_cast<std::size_t>(col)];
+  const float depth_term = grid.spacing == DepthSpacing::kUniformZ ? z : -1.0f / std::max(z, 1e-12f);
+  const float slab = std::clamp((depth_term - image.depth_offset_) * image.depth_scale_, 0.0f, static_cast<float>(grid.nz - 1));
+  const int k0 = std::min(static_cast<int>(slab), std::max(grid.nz - 2, 0));
+  const float fz = slab - static_cast<float>(k0);
+  const int k1 = std::min(k0 + 1, grid.nz - 1);
+
+  const int nodes_x = grid.NodesX();
+  const std::array<const PackedNode*, 4> corner = {
+      &nodes_[static_cast<std::size_t>(k0 * nodes_x + x.lower)], &nodes_[static_cast<std::size_t>(k0 * nodes_x + x.lower + 1)],
+      &nodes_[static_cast<std::size_t>(k1 * nodes_x + x.lower)], &nodes_[static_cast<std::size_t>(k1 * nodes_x + x.lower + 1)]};
+  const float wx0 = 1.0f - x.fraction, wz0 = 1.0f - fz;
+  const std::array<float, 4> weight = {wx0 * wz0, x.fraction * wz0, wx0 * fz, x.fraction * fz};
+  LutPixelSample sample;
+  sample.coverage = image.has_coverage_ ? std::array<float, 3>{0.f, 0.f, 0.f} : std::array<float, 3>{1.f, 1.f, 1.f};
+  for (int k = 0; k < 4; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      sample.alpha[c] += weight[k] * corner[k]->alpha[c];
+      sample.beta[c] += weight[k] * corner[k]->beta[c];
+      if (image.has_coverage_) sample.coverage[c] += weight[k] * corner[k]->coverage[c];
+    }
+  }
+  if (image.inverse_square_) {
+    const float clamped_z = grid.nz == 1 ? static_cast<float>(grid.z_near)
+                                         : std::clamp(z, static_cast<float>(grid.z_near), static_cast<float>(grid.z_far));
     const float inverse_z2 = 1.0f / (clamped_z * clamped_z);
     for (float& alpha : sample.alpha) alpha *= inverse_z2;
   }
   return sample;
+}
+
+LutPixelSample LutImageSampler::At(int col, int row, float z) const {
+  RowSampler sampler;
+  PrepareRow(row, &sampler);
+  return sampler.At(col, z);
 }
 
 }  // namespace lutex

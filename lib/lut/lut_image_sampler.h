@@ -2,8 +2,9 @@
 
 // FrustumLut lookups at the pixel centres of a whole image, for restoration (every pixel of every image
 // of a dive). Gives the same values as FrustumLut::Lookup(col + 0.5, row + 0.5, z) to float precision,
-// about four times faster: the interpolation weights across the image depend only on the column and
-// the row, so they are computed once per column and once per row; node values are packed as floats
+// several times faster: the interpolation weights across the image depend only on the column and the
+// row, so they are computed once per column and once per row; the nodes are interpolated between LUT
+// rows once per image row (RowSampler); node values are packed as floats
 // (alpha premultiplied by its slab's z^2 for AlphaInterpolation::kInverseSquare); and the data coverage of
 // the same grid is interpolated in the same pass, sharing the weights.
 //
@@ -24,24 +25,43 @@ struct LutPixelSample {
 };
 
 class LutImageSampler {
+ private:
+  struct PackedNode {
+    std::array<float, 3> alpha;  // alpha, times the slab's z^2 for inverse-square interpolation
+    std::array<float, 3> beta;
+    std::array<float, 3> coverage;
+  };
+
  public:
+  // The LUT along one image row, prepared by PrepareRow: the nodes interpolated between the two LUT rows
+  // around the image row, for every LUT column and slab, so that each pixel interpolates four nodes
+  // instead of eight. Reuse one for every row of an image.
+  class RowSampler {
+   public:
+    // The LUT at the centre of pixel (col, row of the prepared row), col < grid().image_width, and
+    // planar depth z (metres, camera frame).
+    LutPixelSample At(int col, float z) const;
+
+   private:
+    friend class LutImageSampler;
+    const LutImageSampler* image_ = nullptr;
+    std::vector<PackedNode> nodes_;  // slab k, LUT column i at k * NodesX() + i
+  };
+
   // `coverage` optional: a LUT on the same grid whose alpha holds per-node coverage in [0, 1]. Throws
   // std::invalid_argument if its grid differs.
   explicit LutImageSampler(const FrustumLut& lut, const FrustumLut* coverage = nullptr);
 
-  // The LUT at the centre of pixel (col, row), col < grid().image_width, row < grid().image_height, and
-  // planar depth z (metres, camera frame).
+  // Prepares image row `row` < grid().image_height in `sampler`.
+  void PrepareRow(int row, RowSampler* sampler) const;
+
+  // One pixel (prepares its row: for scattered lookups; restoring an image goes row by row).
   LutPixelSample At(int col, int row, float z) const;
 
  private:
   struct Axis {
     int lower = 0;         // lower node index
     float fraction = 0.f;  // towards the upper node
-  };
-  struct PackedNode {
-    std::array<float, 3> alpha;  // alpha, times the slab's z^2 for inverse-square interpolation
-    std::array<float, 3> beta;
-    std::array<float, 3> coverage;
   };
 
   FrustumLutGrid grid_;

@@ -49,7 +49,9 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
   RestoredImage restored;
   restored.albedo.create(image.size(), CV_32FC3);
   restored.confidence.create(image.size(), CV_32FC3);
+  LutImageSampler::RowSampler row_sampler;
   for (int row = 0; row < image.rows; ++row) {
+    sampler.PrepareRow(row, &row_sampler);
     const float* depth_row = maps.depth.ptr<float>(row);
     const cv::Vec3f* normal_row = maps.normal.ptr<cv::Vec3f>(row);
     const cv::Vec3f* observed_row = image.ptr<cv::Vec3f>(row);
@@ -63,7 +65,7 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
       const Eigen::Vector3f point = (depth / direction.z()) * direction;
       const float cos_theta = shading.Cosine(point, Eigen::Vector3f(normal_row[col][0], normal_row[col][1], normal_row[col][2]));
       const float grazing = GrazingConfidence(cos_theta, options.model);
-      const LutPixelSample lut_here = sampler.At(col, row, depth);
+      const LutPixelSample lut_here = row_sampler.At(col, depth);
       for (int c = 0; c < 3; ++c) {
         const float intensity = observed_row[col][c];
         const float albedo = RestoreChannel(lut_here.alpha[c], lut_here.beta[c], cos_theta, intensity, options.model);
