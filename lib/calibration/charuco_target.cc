@@ -10,7 +10,7 @@
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "lib/calibration/board_albedo_json.h"
+#include "lib/calibration/albedo_json.h"
 #include "lib/image/image_io.h"
 
 namespace lutex {
@@ -79,7 +79,7 @@ CharucoSpec ReadCharucoSpec(const std::filesystem::path& path) {
     spec.square_size = board.at("square_size").get<double>();
     spec.marker_size = board.at("marker_size").get<double>();
     spec.dictionary = board.value("dictionary", spec.dictionary);
-    spec.black_albedo = ReadBoardAlbedo(board, "black_albedo");
+    spec.black_albedo = ReadAlbedo(board, "black_albedo");
     for (const nlohmann::json& entry : board.value("patches", nlohmann::json::array())) {
       ColourPatch patch;
       patch.name = entry.value("name", "patch " + std::to_string(spec.patches.size() + 1));
@@ -87,7 +87,7 @@ CharucoSpec ReadCharucoSpec(const std::filesystem::path& path) {
       if (corners.size() != 4) throw std::runtime_error("patch '" + patch.name + "': corners must be [x0, y0, x1, y1]");
       patch.min_in_board = Eigen::Vector2d(corners[0], corners[1]);
       patch.max_in_board = Eigen::Vector2d(corners[2], corners[3]);
-      patch.albedo = ReadBoardAlbedo(entry, "albedo");
+      patch.albedo = ReadAlbedo(entry, "albedo");
       spec.patches.push_back(patch);
     }
     spec.Check();

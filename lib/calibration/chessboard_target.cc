@@ -14,7 +14,7 @@
 
 #include <Eigen/Geometry>
 
-#include "lib/calibration/board_albedo_json.h"
+#include "lib/calibration/albedo_json.h"
 #include "lib/image/image_io.h"
 
 namespace lutex {
@@ -45,8 +45,8 @@ ChessboardSpec ReadChessboardSpec(const std::filesystem::path& path) {
     spec.inner_corners_x = corners[0];
     spec.inner_corners_y = corners[1];
     spec.square_size = board.at("square_size").get<double>();
-    spec.black_albedo = ReadBoardAlbedo(board, "black_albedo");
-    spec.white_albedo = ReadBoardAlbedo(board, "white_albedo");
+    spec.black_albedo = ReadAlbedo(board, "black_albedo");
+    spec.white_albedo = ReadAlbedo(board, "white_albedo");
     spec.Check();
   } catch (const std::exception& error) {
     throw std::runtime_error(path.string() + ": " + error.what());

@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "lib/image/image_io.h"
+#include "lib/calibration/albedo_json.h"
 #include "lib/util/logging.h"
 
 namespace lutex {
@@ -65,20 +65,7 @@ std::vector<Target> ReadTargets(const std::filesystem::path& path) {
       continue;
     }
     try {
-      if (entry.contains("albedo_linear")) {
-        for (int c = 0; c < 3; ++c) target.albedo[c] = entry["albedo_linear"].at(c).get<double>();
-        if ((target.albedo.array() < 0).any() || (target.albedo.array() > 1).any()) {
-          throw std::runtime_error("albedo_linear must be in [0, 1]");
-        }
-      } else if (entry.contains("albedo_srgb8")) {
-        for (int c = 0; c < 3; ++c) {
-          const int value = entry["albedo_srgb8"].at(c).get<int>();
-          if (value < 0 || value > 255) throw std::runtime_error("albedo_srgb8 must be in 0-255");
-          target.albedo[c] = SrgbToLinear(value / 255.0);
-        }
-      } else {
-        throw std::runtime_error("needs albedo_linear or albedo_srgb8");
-      }
+      target.albedo = ReadAlbedo(entry, "albedo");
       for (const auto& corner : entry.at("corners_world")) {
         target.corners_world.emplace_back(corner.at(0).get<double>(), corner.at(1).get<double>(), corner.at(2).get<double>());
       }

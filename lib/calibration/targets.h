@@ -6,10 +6,11 @@
 //   {"targets": [{"name": "orange board", "albedo_srgb8": [181, 110, 30],
 //                 "corners_world": [[-2, 0, 1.5], [2, 0, 1.5], [2, 0, -1.5], [-2, 0, -1.5]]}, ...]}
 //
-// with "albedo_linear": [r, g, b] in [0, 1] instead of "albedo_srgb8" if known linearly ("id" may stand
-// for "name"). Corners go around the polygon (3 or more, coplanar to 1 mm). Other keys are ignored and
-// entries without corners_world are skipped with a warning, so a file may describe more than the planar
-// targets (the shared Blender datasets' metadata.json is a valid targets file).
+// "albedo_srgb8" holds 8-bit sRGB values in [0, 255] (fractions allowed); give "albedo_linear": [r, g, b]
+// in [0, 1] instead if the albedo is known linearly ("id" may stand for "name"). Corners go around the
+// polygon (3 or more, coplanar to 1 mm). Other keys are ignored and entries without corners_world are
+// skipped with a warning, so a file may describe more than the planar targets (the shared Blender
+// datasets' metadata.json is a valid targets file).
 
 #include <filesystem>
 #include <string>

@@ -1,4 +1,4 @@
-#include "lib/calibration/board_albedo_json.h"
+#include "lib/calibration/albedo_json.h"
 
 #include <stdexcept>
 #include <vector>
@@ -7,8 +7,11 @@
 
 namespace lutex {
 
-Eigen::Vector3d ReadBoardAlbedo(const nlohmann::json& object, const std::string& prefix) {
+Eigen::Vector3d ReadAlbedo(const nlohmann::json& object, const std::string& prefix) {
   const bool linear = object.contains(prefix + "_linear");
+  if (!linear && !object.contains(prefix + "_srgb8")) {
+    throw std::runtime_error("needs " + prefix + "_linear or " + prefix + "_srgb8");
+  }
   const std::string key = prefix + (linear ? "_linear" : "_srgb8");
   const auto values = object.at(key).get<std::vector<double>>();
   if (values.size() != 3) throw std::runtime_error(key + " must have 3 values");
