@@ -109,6 +109,7 @@ std::function<std::optional<BoardMaps>(const cv::Mat&, const CameraRays&)> Board
                                                                                            const Camera& camera,
                                                                                            std::string* what) {
   std::ifstream file(path);
+  if (!file) throw std::runtime_error(path.string() + ": no such board file");
   nlohmann::json json;
   try {
     json = nlohmann::json::parse(file);

@@ -106,6 +106,25 @@ TEST(LutexCli, SelfCalibrationWithoutAScaleSaysWhatToGive) {
   EXPECT_NE(bad_grey.output.find("--grey-world expects a number or x,y,z"), std::string::npos) << bad_grey.output;
 }
 
+// A board file that is missing or not JSON: one line naming it, nothing written.
+TEST(LutexCli, BadBoardFileIsNamed) {
+  testing::TempDir dir;
+  MakeWorkspace(dir.path(), SparseFormat::kBinary);
+  fs::create_directories(dir.path() / "board_images");
+  std::ofstream(dir.path() / "not_json.json") << "{chessboard";
+  for (const auto& [file, problem] : {std::make_pair(std::string("absent.json"), std::string("no such board file")),
+                                      std::make_pair(std::string("not_json.json"), std::string("not a board file"))}) {
+    const fs::path board = dir.path() / file;
+    const testing::CommandResult result = testing::RunCommand(
+        std::string(LUTEX_BINARY) + " calibrate --workspace " + dir.path().string() + " --mesh " +
+        (dir.path() / "plane.ply").string() + " --chessboard " + board.string() + " --chessboard-images " +
+        (dir.path() / "board_images").string() + " --output " + (dir.path() / "out.lut").string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find(board.string() + ": " + problem), std::string::npos) << result.output;
+    EXPECT_FALSE(fs::exists(dir.path() / "out.lut"));
+  }
+}
+
 TEST(LutexCli, HelpTeachesTheOptions) {
   const testing::CommandResult result = testing::RunCommand(std::string(LUTEX_BINARY) + " raycast --help");
   EXPECT_EQ(result.exit_code, 0);
