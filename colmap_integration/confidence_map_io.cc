@@ -18,9 +18,10 @@ fs::path ConfidenceMapPath(const fs::path& folder, const std::string& name) {
 }
 
 void WriteConfidenceMap(const cv::Mat& confidence, const fs::path& path) {
-  cv::Mat confidence_bgr;
-  cv::cvtColor(confidence, confidence_bgr, cv::COLOR_RGB2BGR);
-  confidence_bgr.convertTo(confidence_bgr, CV_8UC3, 255.0);
+  // To 8 bits first, then swap channels: no float copy (144 MB of fresh memory per 12 MP image).
+  cv::Mat confidence_8bit, confidence_bgr;
+  confidence.convertTo(confidence_8bit, CV_8UC3, 255.0);
+  cv::cvtColor(confidence_8bit, confidence_bgr, cv::COLOR_RGB2BGR);
   WriteEncodedImage(confidence_bgr, path);
 }
 

@@ -121,26 +121,38 @@ cv::Mat DecodeLinearImage(const cv::Mat& picture, ImageEncoding encoding) {
   return linear;
 }
 
-cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding) {
-  CV_Assert(linear_rgb.type() == CV_32FC3);
-  cv::Mat bgr;
-  cv::cvtColor(linear_rgb, bgr, cv::COLOR_RGB2BGR);
-  cv::patchNaNs(bgr, 0.0);
-  if (encoding == ImageEncoding::kFloat) return bgr;
-  if (encoding == ImageEncoding::kLinear16) {
-    cv::Mat encoded;
-    bgr.convertTo(encoded, CV_16UC3, 65535.0);  // saturating and rounding
-    return encoded;
-  }
-  cv::Mat encoded(bgr.size(), CV_8UC3);
-  for (int row = 0; row < bgr.rows; ++row) {
-    const auto* in = bgr.ptr<cv::Vec3f>(row);
-    auto* out = encoded.ptr<cv::Vec3b>(row);
-    for (int col = 0; col < bgr.cols; ++col) {
-      for (int c = 0; c < 3; ++c) out[col][c] = EncodeSrgb8(in[col][c]);
+namespace {
+
+// RGB float to BGR of type Out in one pass, each value through `encode` (which must map NaN to 0): no
+// intermediate image (at 12 MP a float copy is 144 MB of fresh memory per image).
+template <typename Out, typename Encode>
+cv::Mat EncodeToBgr(const cv::Mat& linear_rgb, int type, Encode encode) {
+  cv::Mat encoded(linear_rgb.size(), type);
+  for (int row = 0; row < linear_rgb.rows; ++row) {
+    const auto* in = linear_rgb.ptr<cv::Vec3f>(row);
+    auto* out = encoded.ptr<cv::Vec<Out, 3>>(row);
+    for (int col = 0; col < linear_rgb.cols; ++col) {
+      out[col] = cv::Vec<Out, 3>(encode(in[col][2]), encode(in[col][1]), encode(in[col][0]));
     }
   }
   return encoded;
+}
+
+}  // namespace
+
+cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding) {
+  CV_Assert(linear_rgb.type() == CV_32FC3);
+  switch (encoding) {
+    case ImageEncoding::kFloat:
+      return EncodeToBgr<float>(linear_rgb, CV_32FC3, [](float value) { return std::isnan(value) ? 0.0f : value; });
+    case ImageEncoding::kLinear16:
+      return EncodeToBgr<ushort>(linear_rgb, CV_16UC3, [](float value) {  // saturating and rounding
+        return std::isnan(value) ? ushort{0} : cv::saturate_cast<ushort>(value * 65535.0f);
+      });
+    case ImageEncoding::kSrgb8:
+      break;
+  }
+  return EncodeToBgr<uchar>(linear_rgb, CV_8UC3, EncodeSrgb8);
 }
 
 void WriteEncodedImage(const cv::Mat& picture, const std::filesystem::path& path) {

@@ -43,6 +43,27 @@ TEST(ImageIo, EncodingRoundTrips) {
   EXPECT_EQ(stored.at<cv::Vec3w>(0, 255)[0], 0);
 }
 
+// NaN (a pixel without albedo) encodes as 0 in every encoding, values outside [0, 1] saturate in the
+// integer encodings and stay in float, and red goes to OpenCV's third channel.
+TEST(ImageIo, EncodingHandlesNanAndOutOfRangeValues) {
+  const float nan = std::nanf("");
+  cv::Mat values(1, 3, CV_32FC3);
+  values.at<cv::Vec3f>(0, 0) = cv::Vec3f(nan, 0.25f, nan);
+  values.at<cv::Vec3f>(0, 1) = cv::Vec3f(-0.5f, 2.0f, 1.0f);
+  values.at<cv::Vec3f>(0, 2) = cv::Vec3f(1.0f, 0.0f, 0.5f);
+  const cv::Mat srgb = EncodeLinearImage(values, ImageEncoding::kSrgb8);
+  EXPECT_EQ(srgb.at<cv::Vec3b>(0, 0), cv::Vec3b(0, static_cast<uchar>(std::lround(255 * LinearToSrgb(0.25))), 0));
+  EXPECT_EQ(srgb.at<cv::Vec3b>(0, 1), cv::Vec3b(255, 255, 0));
+  EXPECT_EQ(srgb.at<cv::Vec3b>(0, 2), cv::Vec3b(static_cast<uchar>(std::lround(255 * LinearToSrgb(0.5))), 0, 255));
+  const cv::Mat linear16 = EncodeLinearImage(values, ImageEncoding::kLinear16);
+  EXPECT_EQ(linear16.at<cv::Vec3w>(0, 0), cv::Vec3w(0, 16384, 0));
+  EXPECT_EQ(linear16.at<cv::Vec3w>(0, 1), cv::Vec3w(65535, 65535, 0));
+  EXPECT_EQ(linear16.at<cv::Vec3w>(0, 2), cv::Vec3w(32768, 0, 65535));
+  const cv::Mat as_float = EncodeLinearImage(values, ImageEncoding::kFloat);
+  EXPECT_EQ(as_float.at<cv::Vec3f>(0, 0), cv::Vec3f(0.0f, 0.25f, 0.0f));
+  EXPECT_EQ(as_float.at<cv::Vec3f>(0, 1), cv::Vec3f(1.0f, 2.0f, -0.5f));
+}
+
 // The fast 8-bit encoder gives exactly round(255 * LinearToSrgb(v)) for values dense in [0, 1].
 TEST(ImageIo, FastSrgbEncodingIsExact) {
   cv::Mat values(1, 200001, CV_32FC3);
