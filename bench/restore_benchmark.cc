@@ -78,18 +78,19 @@ int main(int argc, char** argv) {
   const FrustumLut lut = ReadLut(restore.lut);
   const CameraRays rays(model.cameras.begin()->second, 1);
   GeometryMapsOptions maps_options;
-  maps_options.face_id = false;
   maps_options.num_threads = 1;
   double read = 0.0, cast = 0.0, arithmetic = 0.0, write = 0.0, write_confidence = 0.0;
+  GeometryMaps maps;
+  RestoredImage result;
   for (const Image* image : list) {
     start = std::chrono::steady_clock::now();
     const cv::Mat linear = ReadLinearImage(root / "W" / "images" / image->name, ImageEncoding::kSrgb8);
     read += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
-    const GeometryMaps maps = scene.Render(rays, image->cam_from_world, maps_options);
+    scene.Render(rays, image->cam_from_world, maps_options, &maps);
     cast += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
-    const RestoredImage result = RestoreImage(linear, maps, rays, lut, restore.restoration);
+    RestoreImage(linear, maps, rays, lut, restore.restoration, nullptr, &result);
     arithmetic += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
     WriteLinearImage(result.albedo, root / "stages" / image->name, ImageEncoding::kSrgb8);

@@ -12,13 +12,18 @@ namespace lutex {
 
 GeometryMapsOptions PerImageMapsOptions() {
   GeometryMapsOptions options;
-  options.face_id = false;
   options.num_threads = 1;
   return options;
 }
 
 void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::string& progress_label,
                           const std::function<void(const Image&, const CameraRays&)>& visit) {
+  ForEachImageWithRaysOnWorkers(model, num_threads, progress_label,
+                                [&](const Image& image, const CameraRays& rays, int) { visit(image, rays); });
+}
+
+void ForEachImageWithRaysOnWorkers(const SparseModel& model, int num_threads, const std::string& progress_label,
+                                   const std::function<void(const Image&, const CameraRays&, int worker)>& visit) {
   using CameraKey = std::tuple<int, std::uint64_t, std::uint64_t, std::vector<double>>;
   std::map<CameraKey, std::vector<const Image*>> images_by_camera;
   for (const auto& entry : model.images) {
@@ -29,8 +34,8 @@ void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::
   ProgressReporter progress(progress_label, model.images.size(), "images");
   for (const auto& [key, images] : images_by_camera) {
     const CameraRays rays(model.cameras.at(images.front()->camera_id), num_threads);
-    ParallelFor(images.size(), num_threads, [&](std::size_t i) {
-      visit(*images[i], rays);
+    ParallelForOnWorkers(images.size(), num_threads, [&](std::size_t i, int worker) {
+      visit(*images[i], rays, worker);
       progress.Advance();
     });
   }

@@ -24,6 +24,11 @@ GeometryMapsOptions PerImageMapsOptions();
 void ForEachImageWithRays(const SparseModel& model, int num_threads, const std::string& progress_label,
                           const std::function<void(const Image&, const CameraRays&)>& visit);
 
+// The same, also telling visit which worker runs it (0 <= worker < ResolveNumThreads(num_threads)), for
+// buffers kept per worker and reused from image to image.
+void ForEachImageWithRaysOnWorkers(const SparseModel& model, int num_threads, const std::string& progress_label,
+                                   const std::function<void(const Image&, const CameraRays&, int worker)>& visit);
+
 // The cameras of `model` and those of its images that still have an output to write: an image is done when
 // every file `outputs_of(image)` names exists (files are written under temporary names and renamed, so an
 // existing one is complete). No 3-D points. Resumed runs visit this instead of the whole model.

@@ -14,6 +14,7 @@
 #include "lib/lut/lut_file.h"
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
 
 namespace lutex {
 
@@ -110,7 +111,16 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
   double confidence_sum = 0.0;
   std::size_t surface_pixels = 0;
   std::mutex summary_mutex;
-  ForEachImageWithRays(todo, options.num_threads, "restore", [&](const Image& image, const CameraRays& rays) {
+  // Maps and outputs of the image each worker is on, reused from image to image.
+  struct WorkerBuffers {
+    GeometryMaps maps;
+    RestoredImage restored;
+  };
+  std::vector<WorkerBuffers> buffers(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
+  ForEachImageWithRaysOnWorkers(todo, options.num_threads, "restore", [&](const Image& image, const CameraRays& rays,
+                                                                          int worker) {
+    GeometryMaps& maps = buffers[static_cast<std::size_t>(worker)].maps;
+    RestoredImage& restored = buffers[static_cast<std::size_t>(worker)].restored;
     const fs::path input = workspace.images_dir / image.name;
     const cv::Mat observed = ReadLinearImage(input, options.input_encoding);
     if (observed.cols != rays.width() || observed.rows != rays.height()) {
@@ -118,8 +128,8 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
                                std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
                                "x" + std::to_string(rays.height()));
     }
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
-    const RestoredImage restored = RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr);
+    scene.Render(rays, image.cam_from_world, PerImageMapsOptions(), &maps);
+    RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr, &restored);
     const std::vector<fs::path> outputs = outputs_of(image);
     WriteLinearImage(restored.albedo, outputs[0], output_encoding);
     WriteConfidenceMap(restored.confidence, outputs[1]);

@@ -54,7 +54,6 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
   ProgressReporter progress("simulate", scene.poses.size(), "images");
   GeometryMapsOptions depth_only;
   depth_only.normal = false;
-  depth_only.face_id = false;
   depth_only.num_threads = options.num_threads;
   for (std::size_t i = 0; i < scene.poses.size(); ++i) {
     const NamedPose& pose = scene.poses[i];

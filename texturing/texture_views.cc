@@ -38,7 +38,6 @@ const CameraRays& ViewRaycaster::RaysFor(const Camera& camera) const {
 GeometryMaps ViewRaycaster::Render(const TextureView& view) const {
   GeometryMapsOptions options;
   options.normal = true;
-  options.face_id = true;
   options.num_threads = 1;
   return scene_.Render(RaysFor(view.camera), view.cam_from_world, options);
 }

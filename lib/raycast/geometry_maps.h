@@ -12,7 +12,8 @@ struct GeometryMaps {
   // Unit geometric normal in the camera frame, facing the camera (n . ray < 0), CV_32FC3 as (x, y, z);
   // NaN where nothing is hit. Empty when not requested.
   cv::Mat normal;
-  // Index of the hit face in the mesh, CV_32S; -1 where nothing is hit. Empty when not requested.
+  // Index of the hit face in the mesh, CV_32S; -1 where nothing is hit. Always produced (ray casting
+  // works on it).
   cv::Mat face_id;
   // Barycentric coordinates (b1, b2) of the hit in its face, CV_32FC2: the point is
   // (1 - b1 - b2) * v0 + b1 * v1 + b2 * v2. Empty when not requested.
@@ -20,9 +21,8 @@ struct GeometryMaps {
 };
 
 struct GeometryMapsOptions {
-  // Which optional maps to produce (depth is always produced).
+  // Which optional maps to produce (depth and face ids are always produced).
   bool normal = true;
-  bool face_id = true;
   bool barycentrics = false;
   // Cast every second pixel in each direction first; fill the pixels between four samples without
   // casting where the samples hit one triangle (its plane, intersected analytically: exact for any camera

@@ -196,6 +196,13 @@ struct FacePlane {
 
 GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
                                   const GeometryMapsOptions& options) const {
+  GeometryMaps maps;
+  Render(rays, cam_from_world, options, &maps);
+  return maps;
+}
+
+void RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world, const GeometryMapsOptions& options,
+                          GeometryMaps* output) const {
   if (!cam_from_world.IsValid()) {
     throw std::invalid_argument("pose for ray casting is not finite or its quaternion is not unit");
   }
@@ -203,13 +210,20 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
   const int height = rays.height();
   const float nan = std::numeric_limits<float>::quiet_NaN();
   // Every pixel is written exactly once (a hit or a miss), so the maps need no initial values.
-  GeometryMaps maps;
+  GeometryMaps& maps = *output;
   maps.depth.create(height, width, CV_32F);
-  if (options.normal) maps.normal.create(height, width, CV_32FC3);
-  if (options.face_id) maps.face_id.create(height, width, CV_32S);
-  if (options.barycentrics) maps.barycentrics.create(height, width, CV_32FC2);
-  // Face of every pixel, also when the caller did not ask for face ids (the adaptive pass needs them).
-  cv::Mat faces(height, width, CV_32S);
+  maps.face_id.create(height, width, CV_32S);
+  if (options.normal) {
+    maps.normal.create(height, width, CV_32FC3);
+  } else {
+    maps.normal.release();
+  }
+  if (options.barycentrics) {
+    maps.barycentrics.create(height, width, CV_32FC2);
+  } else {
+    maps.barycentrics.release();
+  }
+  cv::Mat& faces = maps.face_id;
 
   const Eigen::Matrix3f cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix().cast<float>();
   const Eigen::Matrix3f world_from_cam_rotation = cam_from_world_rotation.transpose();
@@ -218,7 +232,6 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
 
   const auto write = [&](int col, int row, const PixelHit& hit) {
     faces.at<int>(row, col) = hit.face;
-    if (options.face_id) maps.face_id.at<int>(row, col) = hit.face;
     if (hit.face < 0) {
       maps.depth.at<float>(row, col) = nan;
       if (options.normal) maps.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(nan, nan, nan);
@@ -335,7 +348,7 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
       cast(pixels, count);
     }
   });
-  if (step == 1) return maps;
+  if (step == 1) return;
 
   // Pass 2: every other pixel. Its enclosing samples (the pixel itself where it is one) were written in
   // pass 1 and are only read here, and each row writes only itself, so rows run in parallel.
@@ -384,7 +397,6 @@ GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_fro
     }
     if (count > 0) cast(pending, count);
   });
-  return maps;
 }
 
 }  // namespace lutex

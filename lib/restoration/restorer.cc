@@ -29,6 +29,13 @@ void RestorationOptions::Check() const {
 
 RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const CameraRays& rays, const FrustumLut& lut,
                            const RestorationOptions& options, const FrustumLut* coverage) {
+  RestoredImage restored;
+  RestoreImage(image, maps, rays, lut, options, coverage, &restored);
+  return restored;
+}
+
+void RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const CameraRays& rays, const FrustumLut& lut,
+                  const RestorationOptions& options, const FrustumLut* coverage, RestoredImage* output) {
   options.Check();
   CV_Assert(image.type() == CV_32FC3 && !maps.normal.empty());
   if (image.cols != rays.width() || image.rows != rays.height()) {
@@ -46,7 +53,7 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
   const float read_variance = static_cast<float>(options.read_noise * options.read_noise);
   const float squared_snr = static_cast<float>(options.signal_to_noise * options.signal_to_noise);
   const float saturation_level = static_cast<float>(options.saturation_level);
-  RestoredImage restored;
+  RestoredImage& restored = *output;
   restored.albedo.create(image.size(), CV_32FC3);
   restored.confidence.create(image.size(), CV_32FC3);
   LutImageSampler::RowSampler row_sampler;
@@ -78,7 +85,6 @@ RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const
       }
     }
   }
-  return restored;
 }
 
 }  // namespace lutex

@@ -46,5 +46,9 @@ struct RestoredImage {
 // summary); null means every node is trusted.
 RestoredImage RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const CameraRays& rays, const FrustumLut& lut,
                            const RestorationOptions& options, const FrustumLut* coverage = nullptr);
+// The same into `restored`, reusing its buffers when they already have the image's size (no fresh memory
+// per image of a dive).
+void RestoreImage(const cv::Mat& image, const GeometryMaps& maps, const CameraRays& rays, const FrustumLut& lut,
+                  const RestorationOptions& options, const FrustumLut* coverage, RestoredImage* restored);
 
 }  // namespace lutex

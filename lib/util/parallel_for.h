@@ -17,4 +17,9 @@ int ResolveNumThreads(int requested);
 // all threads have joined.
 void ParallelFor(std::size_t num_items, int num_threads, const std::function<void(std::size_t)>& body);
 
+// The same, also telling `body` which worker runs the item: 0 <= worker < ResolveNumThreads(num_threads).
+// For scratch that outlives one item, one per worker (buffers reused from image to image).
+void ParallelForOnWorkers(std::size_t num_items, int num_threads,
+                          const std::function<void(std::size_t item, int worker)>& body);
+
 }  // namespace lutex

@@ -47,9 +47,7 @@ TEST(Shading, WithTheRigTheSignalFactorIsIndependentOfTheSurfaceTilt) {
     const Mesh plane = MakeHeightFieldMesh([slope](double x, double) { return slope * x; }, -5, 5, -5, 5, 2, 2);
     const Simulator simulator(plane, rig, Water::Air(), SurfaceAlbedo::Constant(rho));
     const cv::Mat image = simulator.Render(rays, cam_from_world);
-    GeometryMapsOptions geometry;
-    geometry.face_id = false;
-    const GeometryMaps maps = simulator.RenderGeometry(rays, cam_from_world, geometry);
+    const GeometryMaps maps = simulator.RenderGeometry(rays, cam_from_world, GeometryMapsOptions());
     for (int row = 0; row < 48; ++row) {
       for (int col = 0; col < 64; ++col) {
         const float depth = maps.depth.at<float>(row, col);

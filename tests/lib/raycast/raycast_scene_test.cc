@@ -191,6 +191,38 @@ TEST(RaycastScene, AdaptiveCastingEqualsCastingEveryPixel) {
   }
 }
 
+// Maps reused from another image hold nothing of it: rendering a view that sees the boulder against open
+// water into maps last filled by a view of the terrain gives the maps of rendering it fresh, misses
+// included; options not requested are dropped.
+TEST(RaycastScene, RenderingIntoReusedMapsEqualsRenderingFresh) {
+  Mesh mesh = MakeHeightFieldMesh([](double x, double y) { return 0.2 * std::sin(3 * x) * std::cos(2 * y); },
+                                  -3, 3, -3, 3, 60, 60);
+  AppendMesh(MakeSphereMesh(Eigen::Vector3d(0.3, 0.2, 0.3), 0.4, 24, 48), &mesh);
+  const RaycastScene scene(mesh);
+  const CameraRays rays(DistortedCamera());
+  const Rigid3d terrain_view =
+      CamFromWorldLookingAt(Eigen::Vector3d(0.2, 0, 3), Eigen::Vector3d(0, 0.1, -1), Eigen::Vector3d(0, 1, 0));
+  const Rigid3d sideways_view =
+      CamFromWorldLookingAt(Eigen::Vector3d(-2.5, 0.2, 0.5), Eigen::Vector3d(1, 0, 0.15), Eigen::Vector3d(0, 0, 1));
+  GeometryMapsOptions with_barycentrics;
+  with_barycentrics.barycentrics = true;
+  GeometryMaps reused;
+  scene.Render(rays, terrain_view, with_barycentrics, &reused);
+  scene.Render(rays, sideways_view, GeometryMapsOptions(), &reused);
+  const GeometryMaps fresh = scene.Render(rays, sideways_view);
+  const int misses = cv::countNonZero(fresh.face_id < 0);
+  ASSERT_GT(misses, 100);  // open water above the horizon
+  ASSERT_GT(cv::countNonZero(fresh.face_id >= 0), 100);
+  EXPECT_EQ(cv::countNonZero(reused.face_id != fresh.face_id), 0);
+  // NaN (not equal to itself) exactly where nothing is hit.
+  EXPECT_EQ(cv::countNonZero(reused.depth == reused.depth), static_cast<int>(reused.depth.total()) - misses);
+  cv::Mat depth_reused = reused.depth.clone(), depth_fresh = fresh.depth.clone();
+  cv::patchNaNs(depth_reused, -1);
+  cv::patchNaNs(depth_fresh, -1);
+  EXPECT_EQ(cv::norm(depth_reused, depth_fresh, cv::NORM_INF), 0.0);
+  EXPECT_TRUE(reused.barycentrics.empty());
+}
+
 // Large (georeferenced) coordinates keep millimetre depth precision thanks to the local origin.
 TEST(RaycastScene, GeoreferencedCoordinatesKeepPrecision) {
   const Eigen::Vector3d offset(512345.0, 6012345.0, -1500.0);

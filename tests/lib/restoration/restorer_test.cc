@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "lib/geometry/look_at.h"
+#include "lib/geometry/mesh_primitives.h"
 #include "lib/model/simulator.h"
 #include "lib/model/synthetic_seafloor.h"
+#include "lib/raycast/raycast_scene.h"
 #include "tests/support/test_scenes.h"
 
 namespace lutex {
@@ -88,6 +90,44 @@ TEST(Restorer, TrueLutWithOffsetLightsLeavesOnlyTheShadingApproximation) {
   std::printf("two lights at +-0.4 m: median %.4f, p95 %.4f\n", errors.median, errors.p95);
   EXPECT_LT(errors.median, 0.01);
   EXPECT_LT(errors.p95, 0.06);
+}
+
+// Outputs reused from another image hold nothing of it: a view where half the pixels see no surface,
+// restored into buffers filled with 7, equals restoring it fresh, with albedo and confidence exactly 0
+// where there is no surface.
+TEST(Restorer, RestoringIntoReusedBuffersEqualsRestoringFresh) {
+  const Mesh plane = MakeHeightFieldMesh([](double, double) { return 0.0; }, -1, 1, -1, 1, 4, 4);
+  LightRig rig;
+  rig.lights.emplace_back();
+  const Simulator simulator(plane, rig, testing::ClearWater(), SurfaceAlbedo::Constant(Eigen::Vector3d(0.5, 0.4, 0.3)));
+  const Camera camera = Camera::Pinhole(1, 64, 48, 40, 40);
+  const CameraRays rays(camera);
+  // At the plane's edge, looking down: the left half of the image sees beyond it.
+  const Rigid3d cam_from_world =
+      CamFromWorldLookingAt(Eigen::Vector3d(-1, 0, 1.5), Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(0, -1, 0));
+  FrustumLutGrid grid;
+  grid.image_width = 64;
+  grid.image_height = 48;
+  const FrustumLut lut = simulator.TrueLut(camera, grid);
+  const GeometryMaps maps = RaycastScene(plane).Render(rays, cam_from_world);
+  const cv::Mat image = simulator.Render(rays, cam_from_world);
+  const RestoredImage fresh = RestoreImage(image, maps, rays, lut, RestorationOptions());
+  RestoredImage reused;
+  reused.albedo = cv::Mat(48, 64, CV_32FC3, cv::Scalar::all(7));
+  reused.confidence = cv::Mat(48, 64, CV_32FC3, cv::Scalar::all(7));
+  RestoreImage(image, maps, rays, lut, RestorationOptions(), nullptr, &reused);
+  const int no_surface = cv::countNonZero(maps.face_id < 0);
+  ASSERT_GT(no_surface, 48 * 20);
+  ASSERT_LT(no_surface, 48 * 44);
+  EXPECT_EQ(cv::norm(reused.albedo, fresh.albedo, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(reused.confidence, fresh.confidence, cv::NORM_INF), 0.0);
+  for (int row = 0; row < 48; ++row) {
+    for (int col = 0; col < 64; ++col) {
+      if (maps.face_id.at<int>(row, col) >= 0) continue;
+      ASSERT_EQ(reused.albedo.at<cv::Vec3f>(row, col), cv::Vec3f(0, 0, 0));
+      ASSERT_EQ(reused.confidence.at<cv::Vec3f>(row, col), cv::Vec3f(0, 0, 0));
+    }
+  }
 }
 
 TEST(Restorer, RejectsImagesOfAnotherSize) {
