@@ -11,6 +11,7 @@
 // Coverage is interpolated trilinearly (weights summing to 1), whatever the grid's alpha interpolation:
 // it is a fraction, not a quantity that falls off with distance.
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -75,5 +76,40 @@ class LutImageSampler {
   float depth_offset_ = 0.f;
   float depth_scale_ = 0.f;
 };
+
+// Inline: restoration calls it for every pixel of every image.
+inline LutPixelSample LutImageSampler::RowSampler::At(int col, float z) const {
+  const LutImageSampler& image = *image_;
+  const FrustumLutGrid& grid = image.grid_;
+  const Axis& x = image.columns_[static_cast<std::size_t>(col)];
+  const float depth_term = grid.spacing == DepthSpacing::kUniformZ ? z : -1.0f / std::max(z, 1e-12f);
+  const float slab = std::clamp((depth_term - image.depth_offset_) * image.depth_scale_, 0.0f, static_cast<float>(grid.nz - 1));
+  const int k0 = std::min(static_cast<int>(slab), std::max(grid.nz - 2, 0));
+  const float fz = slab - static_cast<float>(k0);
+  const int k1 = std::min(k0 + 1, grid.nz - 1);
+
+  const int nodes_x = grid.NodesX();
+  const std::array<const PackedNode*, 4> corner = {
+      &nodes_[static_cast<std::size_t>(k0 * nodes_x + x.lower)], &nodes_[static_cast<std::size_t>(k0 * nodes_x + x.lower + 1)],
+      &nodes_[static_cast<std::size_t>(k1 * nodes_x + x.lower)], &nodes_[static_cast<std::size_t>(k1 * nodes_x + x.lower + 1)]};
+  const float wx0 = 1.0f - x.fraction, wz0 = 1.0f - fz;
+  const std::array<float, 4> weight = {wx0 * wz0, x.fraction * wz0, wx0 * fz, x.fraction * fz};
+  LutPixelSample sample;
+  sample.coverage = image.has_coverage_ ? std::array<float, 3>{0.f, 0.f, 0.f} : std::array<float, 3>{1.f, 1.f, 1.f};
+  for (int k = 0; k < 4; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      sample.alpha[c] += weight[k] * corner[k]->alpha[c];
+      sample.beta[c] += weight[k] * corner[k]->beta[c];
+      if (image.has_coverage_) sample.coverage[c] += weight[k] * corner[k]->coverage[c];
+    }
+  }
+  if (image.inverse_square_) {
+    const float clamped_z = grid.nz == 1 ? static_cast<float>(grid.z_near)
+                                         : std::clamp(z, static_cast<float>(grid.z_near), static_cast<float>(grid.z_far));
+    const float inverse_z2 = 1.0f / (clamped_z * clamped_z);
+    for (float& alpha : sample.alpha) alpha *= inverse_z2;
+  }
+  return sample;
+}
 
 }  // namespace lutex

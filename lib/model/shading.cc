@@ -24,14 +24,6 @@ double Shading::Cosine(const Eigen::Vector3d& point_in_cam, const Eigen::Vector3
   return weighted_cosine / irradiance;
 }
 
-float Shading::Cosine(const Eigen::Vector3f& point_in_cam, const Eigen::Vector3f& unit_normal_in_cam) const {
-  if (!rig.lights.empty()) {
-    return static_cast<float>(Cosine(Eigen::Vector3d(point_in_cam.cast<double>()), Eigen::Vector3d(unit_normal_in_cam.cast<double>())));
-  }
-  const Eigen::Vector3f to_light = light_in_cam.cast<float>() - point_in_cam;
-  return unit_normal_in_cam.dot(to_light) / to_light.norm();
-}
-
 bool Shading::operator==(const Shading& other) const {
   if (light_in_cam != other.light_in_cam || rig.lights.size() != other.rig.lights.size()) return false;
   for (std::size_t l = 0; l < rig.lights.size(); ++l) {

@@ -28,9 +28,15 @@ struct Shading {
 
   // cos_theta; negative for back faces with one light position, 0 with a rig.
   double Cosine(const Eigen::Vector3d& point_in_cam, const Eigen::Vector3d& normal_in_cam) const;
-  // The same in float for a unit normal (restoration: every pixel of every image), equal to float
-  // precision.
-  float Cosine(const Eigen::Vector3f& point_in_cam, const Eigen::Vector3f& unit_normal_in_cam) const;
+  // The same in float for a unit normal (restoration: every pixel of every image, hence inline), equal
+  // to float precision.
+  float Cosine(const Eigen::Vector3f& point_in_cam, const Eigen::Vector3f& unit_normal_in_cam) const {
+    if (!rig.lights.empty()) {
+      return static_cast<float>(Cosine(Eigen::Vector3d(point_in_cam.cast<double>()), Eigen::Vector3d(unit_normal_in_cam.cast<double>())));
+    }
+    const Eigen::Vector3f to_light = light_in_cam.cast<float>() - point_in_cam;
+    return unit_normal_in_cam.dot(to_light) / to_light.norm();
+  }
   bool operator==(const Shading& other) const;
 };
 
