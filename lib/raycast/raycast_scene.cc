@@ -368,16 +368,20 @@ void RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
     const auto [row0, row1] = rows_around[row_index];
     std::array<std::pair<int, int>, 16> pending;
     int count = 0;
-    // The triangles this row met last, prepared (neighbouring pixels meet the same few).
+    // The triangles this row met last, prepared (neighbouring pixels meet the same few), found by their
+    // ids (kept apart: scanning the planes themselves would touch a cache line each).
     std::array<FacePlane, 8> recent;
+    std::array<int, 8> recent_faces;
+    recent_faces.fill(-1);
     std::size_t next_slot = 0;
     const auto plane_of = [&](int face) -> const FacePlane& {
-      for (const FacePlane& plane : recent) {
-        if (plane.face == face) return plane;
+      for (std::size_t slot = 0; slot < recent_faces.size(); ++slot) {
+        if (recent_faces[slot] == face) return recent[slot];
       }
-      FacePlane& slot = recent[next_slot++ % recent.size()];
-      slot = prepare(face);
-      return slot;
+      const std::size_t slot = next_slot++ % recent.size();
+      recent[slot] = prepare(face);
+      recent_faces[slot] = face;
+      return recent[slot];
     };
     for (int col = 0; col < width; ++col) {
       const auto [col0, col1] = cols_around[static_cast<std::size_t>(col)];
