@@ -156,37 +156,41 @@ struct PixelHit {
 // (dual1 . (x - p0), dual2 . (x - p0)), dual1 and dual2 being the dual basis of the edges in the plane.
 struct FacePlane {
   int face = -1;  // -1: degenerate (no area)
-  Eigen::Vector3d p0, normal, dual1, dual2;
-  double offset = 0.0;
+  Eigen::Vector3f p0, normal, dual1, dual2;
+  float offset = 0.0f;
   Eigen::Vector3f unit_normal;
 
   FacePlane() = default;
+  // Vertices relative to the camera centre, in the camera frame (double: the edges of a small triangle far
+  // from the mesh origin lose no precision before they are rounded).
   FacePlane(int face_id, const Eigen::Vector3d& v0_in_cam, const Eigen::Vector3d& v1_in_cam,
-            const Eigen::Vector3d& v2_in_cam)
-      : p0(v0_in_cam) {
-    const Eigen::Vector3d e1 = v1_in_cam - p0, e2 = v2_in_cam - p0;
-    normal = e1.cross(e2);
+            const Eigen::Vector3d& v2_in_cam) {
+    const Eigen::Vector3d e1 = v1_in_cam - v0_in_cam, e2 = v2_in_cam - v0_in_cam;
+    const Eigen::Vector3d plane_normal = e1.cross(e2);
     const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
     const double determinant = d11 * d22 - d12 * d12;
-    if (!(determinant > 0.0) || !(normal.squaredNorm() > 0.0)) return;
+    if (!(determinant > 0.0) || !(plane_normal.squaredNorm() > 0.0)) return;
     face = face_id;
-    offset = normal.dot(p0);
-    dual1 = (d22 * e1 - d12 * e2) / determinant;
-    dual2 = (d11 * e2 - d12 * e1) / determinant;
-    unit_normal = normal.normalized().cast<float>();
+    // Scaled to unit length so that float keeps its precision whatever the triangle's size.
+    const Eigen::Vector3d unit = plane_normal.normalized();
+    p0 = v0_in_cam.cast<float>();
+    normal = unit.cast<float>();
+    offset = static_cast<float>(unit.dot(v0_in_cam));
+    dual1 = ((d22 * e1 - d12 * e2) / determinant).cast<float>();
+    dual2 = ((d11 * e2 - d12 * e1) / determinant).cast<float>();
+    unit_normal = normal;
   }
 
   PixelHit Intersect(const Eigen::Vector3f& direction_in_cam) const {
     PixelHit hit;
-    const Eigen::Vector3d direction = direction_in_cam.cast<double>();
-    const double along = normal.dot(direction);
-    if (face < 0 || along == 0.0) return hit;
-    const double t = offset / along;
-    const Eigen::Vector3d from_p0 = t * direction - p0;
-    hit.distance = static_cast<float>(t);
+    const float along = normal.dot(direction_in_cam);
+    if (face < 0 || along == 0.0f) return hit;
+    const float t = offset / along;
+    const Eigen::Vector3f from_p0 = t * direction_in_cam - p0;
+    hit.distance = t;
     hit.face = face;
-    hit.b1 = static_cast<float>(dual1.dot(from_p0));
-    hit.b2 = static_cast<float>(dual2.dot(from_p0));
+    hit.b1 = dual1.dot(from_p0);
+    hit.b2 = dual2.dot(from_p0);
     hit.unit_normal_in_cam = unit_normal;
     return hit;
   }
