@@ -156,9 +156,8 @@ struct PixelHit {
 // (dual1 . (x - p0), dual2 . (x - p0)), dual1 and dual2 being the dual basis of the edges in the plane.
 struct FacePlane {
   int face = -1;  // -1: degenerate (no area)
-  Eigen::Vector3f p0, normal, dual1, dual2;
+  Eigen::Vector3f p0, normal, dual1, dual2;  // normal: unit
   float offset = 0.0f;
-  Eigen::Vector3f unit_normal;
 
   FacePlane() = default;
   // Vertices relative to the camera centre, in the camera frame (double: the edges of a small triangle far
@@ -178,7 +177,6 @@ struct FacePlane {
     offset = static_cast<float>(unit.dot(v0_in_cam));
     dual1 = ((d22 * e1 - d12 * e2) / determinant).cast<float>();
     dual2 = ((d11 * e2 - d12 * e1) / determinant).cast<float>();
-    unit_normal = normal;
   }
 
   PixelHit Intersect(const Eigen::Vector3f& direction_in_cam) const {
@@ -191,7 +189,7 @@ struct FacePlane {
     hit.face = face;
     hit.b1 = dual1.dot(from_p0);
     hit.b2 = dual2.dot(from_p0);
-    hit.unit_normal_in_cam = unit_normal;
+    hit.unit_normal_in_cam = normal;
     return hit;
   }
 };
