@@ -74,9 +74,12 @@ FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency&
   constexpr std::size_t kNumLocks = 1024;
   std::vector<std::mutex> locks(kNumLocks);
   ProgressReporter progress("texture: visibility", views.size(), "views");
-  ParallelFor(views.size(), options.num_threads, [&](std::size_t view_index) {
+  // The maps of the view each worker is on, reused from view to view.
+  std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
+  ParallelForOnWorkers(views.size(), options.num_threads, [&](std::size_t view_index, int worker) {
     const TextureView& view = views[view_index];
-    const GeometryMaps maps = raycaster.Render(view);
+    GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
+    raycaster.Render(view, &maps);
     const cv::Mat confidence = LoadViewConfidence(source, views, view_index);
     thread_local FaceHits face_hits;
     face_hits.Resize(num_faces);

@@ -180,6 +180,8 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
   }
   summary.num_passes = static_cast<int>(passes.size());
   std::vector<std::mutex> locks(1024);
+  // The maps of the view each worker is on, reused from view to view and pass to pass.
+  std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
   std::size_t total_samples = 0;
   for (std::size_t p = 0; p < passes.size(); ++p) {
     const std::size_t first_texel = layout.chart_offsets[passes[p].first];
@@ -202,11 +204,12 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
                                                       std::to_string(passes.size())
                                                 : std::string("texture: colours"),
                               used_views.size(), "views");
-    ParallelFor(used_views.size(), options.num_threads, [&](std::size_t i) {
+    ParallelForOnWorkers(used_views.size(), options.num_threads, [&](std::size_t i, int worker) {
       const std::size_t v = used_views[i];
       const cv::Mat colour = LoadViewImage(source, views, v);
       const cv::Mat confidence = LoadViewConfidence(source, views, v);
-      const GeometryMaps maps = raycaster.Render(views[v]);
+      GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
+      raycaster.Render(views[v], &maps);
       SampleView(mesh, views[v], static_cast<std::uint32_t>(v), maps, colour, confidence, faces_of_view[v], layout,
                  first_texel, samples, locks);
       progress.Advance();

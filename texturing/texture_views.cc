@@ -35,11 +35,11 @@ const CameraRays& ViewRaycaster::RaysFor(const Camera& camera) const {
   return *rays;
 }
 
-GeometryMaps ViewRaycaster::Render(const TextureView& view) const {
+void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps) const {
   GeometryMapsOptions options;
   options.normal = true;
   options.num_threads = 1;
-  return scene_.Render(RaysFor(view.camera), view.cam_from_world, options);
+  scene_.Render(RaysFor(view.camera), view.cam_from_world, options, maps);
 }
 
 }  // namespace lutex

@@ -51,8 +51,9 @@ class ViewRaycaster {
  public:
   explicit ViewRaycaster(const RaycastScene& scene) : scene_(scene) {}
 
-  // Depth, camera-frame normal and face id of every pixel of `view` (one thread: views run in parallel).
-  GeometryMaps Render(const TextureView& view) const;
+  // Depth, camera-frame normal and face id of every pixel of `view` into `maps`, reusing its buffers
+  // (one set per worker: no fresh memory per view). One thread: views run in parallel.
+  void Render(const TextureView& view, GeometryMaps* maps) const;
 
  private:
   const CameraRays& RaysFor(const Camera& camera) const;
