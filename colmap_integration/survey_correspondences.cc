@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "colmap_integration/images_by_camera.h"
+#include "lib/util/parallel_for.h"
 
 namespace lutex {
 
@@ -75,9 +76,13 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const Workspace& workspace, c
   options.Check();
   std::map<std::uint32_t, ImageSamples> samples;
   std::mutex mutex;
-  ForEachImageWithRays(model, options.num_threads, "superpixels", [&](const Image& image, const CameraRays& rays) {
+  // The maps of the image each worker is on, reused from image to image (both passes).
+  std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
+  ForEachImageWithRaysOnWorkers(model, options.num_threads, "superpixels", [&](const Image& image, const CameraRays& rays,
+                                                                               int worker) {
     const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
+    GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
+    scene.Render(rays, image.cam_from_world, PerImageMapsOptions(), &maps);
     ImageSamples result;
     result.samples = SampleSuperpixels(observed, maps, rays, options.superpixels);
     const Rigid3d world_from_cam = image.cam_from_world.Inverse();
@@ -102,11 +107,13 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const Workspace& workspace, c
   }
 
   std::map<std::uint32_t, std::vector<Match>> matches;  // per image A
-  ForEachImageWithRays(model, options.num_threads, "correspondences", [&](const Image& image, const CameraRays& rays) {
+  ForEachImageWithRaysOnWorkers(model, options.num_threads, "correspondences", [&](const Image& image,
+                                                                                   const CameraRays& rays, int worker) {
     const auto asking = askers.find(image.image_id);
     if (asking == askers.end()) return;
     const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
+    GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
+    scene.Render(rays, image.cam_from_world, PerImageMapsOptions(), &maps);
     const ViewedImage other{observed, maps, rays, image.cam_from_world};
     std::vector<std::pair<std::uint32_t, Match>> found;
     for (const auto& [a, rank] : asking->second) {
