@@ -82,9 +82,9 @@ std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions
   sampling.shading = options.shading;
   std::map<std::uint32_t, std::vector<KnownColorObservation>> per_image;
   std::mutex per_image_mutex;
-  ForEachImageWithRays(model, options.num_threads, "target images", [&](const Image& image, const CameraRays& rays) {
+  ForEachImageWithMaps(model, scene, options.num_threads, "target images",
+                       [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
     const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
-    const GeometryMaps maps = scene.Render(rays, image.cam_from_world, PerImageMapsOptions());
     const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
     std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
     // In a survey most images show no target; in calibration images that is worth a warning.

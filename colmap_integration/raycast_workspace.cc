@@ -15,7 +15,6 @@
 #include "lib/raycast/geometry_previews.h"
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/logging.h"
-#include "lib/util/parallel_for.h"
 
 namespace lutex {
 
@@ -55,13 +54,9 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
 
   std::vector<double> hit_fractions;
   std::mutex hit_fractions_mutex;
-  // The maps of the image each worker is on, reused from image to image.
-  std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
-  ForEachImageWithRaysOnWorkers(todo, options.num_threads, "raycast", [&](const Image& image, const CameraRays& rays,
-                                                                          int worker) {
+  ForEachImageWithMaps(todo, scene, options.num_threads, "raycast",
+                       [&](const Image& image, const CameraRays&, const GeometryMaps& maps, int) {
     const std::vector<fs::path> outputs = outputs_of(image);
-    GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
-    scene.Render(rays, image.cam_from_world, PerImageMapsOptions(), &maps);
     const double hit_fraction =
         static_cast<double>(cv::countNonZero(maps.depth == maps.depth)) / static_cast<double>(maps.depth.total());
     WriteColmapArray(ReplaceNanWithZero(maps.depth), outputs[0]);

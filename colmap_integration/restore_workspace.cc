@@ -111,16 +111,11 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
   double confidence_sum = 0.0;
   std::size_t surface_pixels = 0;
   std::mutex summary_mutex;
-  // Maps and outputs of the image each worker is on, reused from image to image.
-  struct WorkerBuffers {
-    GeometryMaps maps;
-    RestoredImage restored;
-  };
-  std::vector<WorkerBuffers> buffers(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
-  ForEachImageWithRaysOnWorkers(todo, options.num_threads, "restore", [&](const Image& image, const CameraRays& rays,
-                                                                          int worker) {
-    GeometryMaps& maps = buffers[static_cast<std::size_t>(worker)].maps;
-    RestoredImage& restored = buffers[static_cast<std::size_t>(worker)].restored;
+  // The outputs of the image each worker is on, reused from image to image.
+  std::vector<RestoredImage> worker_outputs(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
+  ForEachImageWithMaps(todo, scene, options.num_threads, "restore",
+                       [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int worker) {
+    RestoredImage& restored = worker_outputs[static_cast<std::size_t>(worker)];
     const fs::path input = workspace.images_dir / image.name;
     const cv::Mat observed = ReadLinearImage(input, options.input_encoding);
     if (observed.cols != rays.width() || observed.rows != rays.height()) {
@@ -128,7 +123,6 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
                                std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
                                "x" + std::to_string(rays.height()));
     }
-    scene.Render(rays, image.cam_from_world, PerImageMapsOptions(), &maps);
     RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr, &restored);
     const std::vector<fs::path> outputs = outputs_of(image);
     WriteLinearImage(restored.albedo, outputs[0], output_encoding);

@@ -7,7 +7,6 @@
 #include <tuple>
 
 #include "colmap_integration/images_by_camera.h"
-#include "lib/util/parallel_for.h"
 
 namespace lutex {
 
@@ -76,13 +75,9 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const Workspace& workspace, c
   options.Check();
   std::map<std::uint32_t, ImageSamples> samples;
   std::mutex mutex;
-  // The maps of the image each worker is on, reused from image to image (both passes).
-  std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
-  ForEachImageWithRaysOnWorkers(model, options.num_threads, "superpixels", [&](const Image& image, const CameraRays& rays,
-                                                                               int worker) {
+  ForEachImageWithMaps(model, scene, options.num_threads, "superpixels",
+                       [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
     const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
-    GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
-    scene.Render(rays, image.cam_from_world, PerImageMapsOptions(), &maps);
     ImageSamples result;
     result.samples = SampleSuperpixels(observed, maps, rays, options.superpixels);
     const Rigid3d world_from_cam = image.cam_from_world.Inverse();
@@ -107,13 +102,12 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const Workspace& workspace, c
   }
 
   std::map<std::uint32_t, std::vector<Match>> matches;  // per image A
-  ForEachImageWithRaysOnWorkers(model, options.num_threads, "correspondences", [&](const Image& image,
-                                                                                   const CameraRays& rays, int worker) {
+  // Only the images some other image asks.
+  const SparseModel asked = OnlyImages(model, [&](const Image& image) { return askers.count(image.image_id) > 0; });
+  ForEachImageWithMaps(asked, scene, options.num_threads, "correspondences",
+                       [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
     const auto asking = askers.find(image.image_id);
-    if (asking == askers.end()) return;
     const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
-    GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
-    scene.Render(rays, image.cam_from_world, PerImageMapsOptions(), &maps);
     const ViewedImage other{observed, maps, rays, image.cam_from_world};
     std::vector<std::pair<std::uint32_t, Match>> found;
     for (const auto& [a, rank] : asking->second) {
