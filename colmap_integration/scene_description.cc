@@ -254,8 +254,6 @@ SceneDescription Parse(const json& root, const std::filesystem::path& folder) {
   return scene;
 }
 
-}  // namespace
-
 // `parse` applied to the JSON in `path`; every error names the file.
 template <typename Parsed>
 Parsed ParseJsonFile(const std::filesystem::path& path, const char* what, Parsed (*parse)(const json&, const std::filesystem::path&)) {
@@ -263,12 +261,12 @@ Parsed ParseJsonFile(const std::filesystem::path& path, const char* what, Parsed
   if (!stream) throw std::runtime_error(path.string() + ": no such " + what);
   try {
     return parse(json::parse(stream), path.parent_path());
-  } catch (const json::exception& error) {
-    throw std::runtime_error(path.string() + ": " + error.what());
-  } catch (const std::exception& error) {
+  } catch (const std::exception& error) {  // JSON syntax and type errors, and the parser's own
     throw std::runtime_error(path.string() + ": " + error.what());
   }
 }
+
+}  // namespace
 
 SceneDescription ReadSceneDescription(const std::filesystem::path& path) {
   return ParseJsonFile<SceneDescription>(path, "scene description", Parse);
