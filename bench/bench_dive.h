@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "colmap_integration/simulate_workspace.h"
+#include "colmap_integration/stages/simulate_workspace.h"
 
 namespace lutex::bench {
 

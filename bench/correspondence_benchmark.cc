@@ -15,9 +15,9 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
-#include "colmap_integration/sparse_model_io.h"
-#include "colmap_integration/survey_correspondences.h"
-#include "colmap_integration/workspace.h"
+#include "colmap_integration/io/sparse_model_io.h"
+#include "lib/calibration/survey_correspondences.h"
+#include "colmap_integration/io/workspace.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/image/image_io.h"
 #include "lib/util/logging.h"
@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   const RaycastScene scene(ReadMesh(root / "W" / "scene" / "mesh.ply"));
   SurveyCorrespondenceOptions options;
   options.num_threads = num_threads;
-  const SurveyCorrespondences found = ExtractSurveyCorrespondences(workspace, model, scene, options);
+  const SurveyCorrespondences found = ExtractSurveyCorrespondences(workspace.images_dir, model, scene, options);
   const double extract = bench::SecondsSince(start);
 
   std::cout << names.size() << " images of 1152 x 864, " << num_threads << " threads\n"

@@ -16,9 +16,9 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
-#include "colmap_integration/confidence_map_io.h"
-#include "colmap_integration/restore_workspace.h"
-#include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/io/confidence_map_io.h"
+#include "colmap_integration/stages/restore_workspace.h"
+#include "colmap_integration/io/sparse_model_io.h"
 #include "lib/image/image_io.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/lut/lut_file.h"

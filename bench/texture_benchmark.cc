@@ -19,8 +19,8 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
-#include "colmap_integration/sparse_model_io.h"
-#include "colmap_integration/texture_workspace.h"
+#include "colmap_integration/io/sparse_model_io.h"
+#include "colmap_integration/stages/texture_workspace.h"
 #include "lib/image/image_io.h"
 #include "lib/util/logging.h"
 #include "lib/util/parallel_for.h"

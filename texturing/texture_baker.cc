@@ -35,6 +35,13 @@ void TextureBakingOptions::Check() const {
 TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>& views, const ViewImageSource& source,
                                 const TextureBakingOptions& options) {
   options.Check();
+  mesh.Check("texture: mesh");
+  return BakeTexture(mesh, RaycastScene(mesh), views, source, options);
+}
+
+TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, const std::vector<TextureView>& views,
+                                const ViewImageSource& source, const TextureBakingOptions& options) {
+  options.Check();
   if (views.empty()) throw std::invalid_argument("texture: no views to texture from");
   if (!source.linear_rgb) throw std::invalid_argument("texture: no image source");
   if (views.size() >= kNoView) throw std::invalid_argument("texture: too many views");
@@ -45,7 +52,6 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>
   summary.num_faces = mesh.faces.size();
 
   auto start = std::chrono::steady_clock::now();
-  const RaycastScene scene(mesh);
   const ViewRaycaster raycaster(scene);
   const FaceAdjacency adjacency(mesh);
   FaceViewCandidatesOptions visibility = options.visibility;

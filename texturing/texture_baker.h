@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "lib/geometry/mesh.h"
+#include "lib/raycast/raycast_scene.h"
 #include "texturing/face_view_candidates.h"
 #include "texturing/seam_visibility.h"
 #include "texturing/texel_fusion.h"
@@ -66,6 +67,9 @@ struct TextureBakingResult {
 
 // Throws std::invalid_argument on bad options or an empty mesh or view list, and what the image source
 // throws.
+// `scene`: the mesh's ray-casting scene when the caller has one (a loaded dive); the other form builds it.
+TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, const std::vector<TextureView>& views,
+                                const ViewImageSource& source, const TextureBakingOptions& options);
 TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>& views, const ViewImageSource& source,
                                 const TextureBakingOptions& options);
 

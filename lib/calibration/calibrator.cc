@@ -116,13 +116,9 @@ struct ChannelProblemInput {
 };
 
 // Solves one channel on one level, starting from `values`.
-ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channel, NodeValues* values) {
-  const FrustumLutGrid& grid = input.level_lut.grid();
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
+// Known colours: alpha cos_theta albedo + beta = the observed intensity, at the observation's nodes.
+void AddKnownColorResiduals(const ChannelProblemInput& input, int channel, NodeValues* values, ceres::Problem* problem) {
   const auto block = [values](int node) { return (*values)[static_cast<std::size_t>(node)].data(); };
-
   for (std::size_t o = 0; o < input.observations.known_colors.size(); ++o) {
     const KnownColorObservation& observation = input.observations.known_colors[o];
     const double weight = input.known_color_weights[o][channel];
@@ -133,11 +129,16 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
     std::vector<double> beta_weights(weights.weight.begin(), weights.weight.begin() + weights.count);
     std::vector<double*> blocks;
     for (int n = 0; n < weights.count; ++n) blocks.push_back(block(weights.node[n]));
-    problem.AddResidualBlock(KnownColorResidual::Create(std::move(alpha_weights), std::move(beta_weights),
+    problem->AddResidualBlock(KnownColorResidual::Create(std::move(alpha_weights), std::move(beta_weights),
                                                         observation.cos_theta * observation.albedo[channel],
                                                         observation.intensity[channel], weight),
                              nullptr, blocks);
   }
+}
+
+// Correspondences: two views of one surface point restore to the same albedo.
+void AddCorrespondenceResiduals(const ChannelProblemInput& input, int channel, NodeValues* values, ceres::Problem* problem) {
+  const auto block = [values](int node) { return (*values)[static_cast<std::size_t>(node)].data(); };
   for (std::size_t o = 0; o < input.observations.correspondences.size(); ++o) {
     const CorrespondenceObservation& observation = input.observations.correspondences[o];
     const double weight = input.correspondence_weights[o][channel];
@@ -170,24 +171,35 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
     if (!(scale > 0.0)) continue;
     std::vector<double*> blocks;
     for (int node : nodes) blocks.push_back(block(node));
-    problem.AddResidualBlock(
+    problem->AddResidualBlock(
         CorrespondenceResidual::Create(std::move(coefficients), observation.first.cos_theta,
                                        observation.first.intensity[channel], observation.second.cos_theta,
                                        observation.second.intensity[channel], weight / scale),
         nullptr, blocks);
   }
+}
+
+// Pure water: beta at every slab along a pure-water pixel's ray stays below what the pixel saw (not in air).
+void AddPureWaterResiduals(const ChannelProblemInput& input, int channel, NodeValues* values, ceres::Problem* problem) {
+  const auto block = [values](int node) { return (*values)[static_cast<std::size_t>(node)].data(); };
+  const FrustumLutGrid& grid = input.level_lut.grid();
   for (const PureWaterObservation& observation : input.observations.pure_water) {
-    if (input.options.in_air) break;
     for (int k = 0; k < grid.nz; ++k) {
       const NodeWeights weights = input.level_lut.Weights(observation.pixel.x(), observation.pixel.y(), grid.SlabDepth(k));
       std::vector<double> beta_weights(weights.weight.begin(), weights.weight.begin() + weights.count);
       std::vector<double*> blocks;
       for (int n = 0; n < weights.count; ++n) blocks.push_back(block(weights.node[n]));
-      problem.AddResidualBlock(PureWaterBoundResidual::Create(std::move(beta_weights), observation.intensity[channel],
+      problem->AddResidualBlock(PureWaterBoundResidual::Create(std::move(beta_weights), observation.intensity[channel],
                                                               input.options.pure_water_weight * observation.weight),
                                nullptr, blocks);
     }
   }
+}
+
+// Smoothness between neighbouring nodes, within and between slabs, following the reference's shape.
+void AddSmoothnessResiduals(const ChannelProblemInput& input, int channel, NodeValues* values, ceres::Problem* problem) {
+  const auto block = [values](int node) { return (*values)[static_cast<std::size_t>(node)].data(); };
+  const FrustumLutGrid& grid = input.level_lut.grid();
   for (int k = 0; k < grid.nz; ++k) {
     for (int j = 0; j < grid.NodesY(); ++j) {
       for (int i = 0; i < grid.NodesX(); ++i) {
@@ -203,10 +215,10 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
           return ref_a > 0.0 && ref_b > 0.0 ? ref_a / ref_b : 1.0;
         };
         const auto add = [&](int there, double alpha_weight, double beta_weight) {
-          problem.AddResidualBlock(SmoothnessResidual::Create(0, alpha_weight, 1.0, shape_scale(there, 0)), nullptr,
+          problem->AddResidualBlock(SmoothnessResidual::Create(0, alpha_weight, 1.0, shape_scale(there, 0)), nullptr,
                                    block(here), block(there));
           if (!input.options.in_air) {
-            problem.AddResidualBlock(SmoothnessResidual::Create(1, beta_weight, 1.0, shape_scale(there, 1)), nullptr,
+            problem->AddResidualBlock(SmoothnessResidual::Create(1, beta_weight, 1.0, shape_scale(there, 1)), nullptr,
                                      block(here), block(there));
           }
         };
@@ -223,21 +235,32 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
       }
     }
   }
+}
+
+// alpha, beta >= 0; in air beta is fixed at 0; the gauge node fixes the scale the data leave free.
+void BoundNodesAndFixGauge(const ChannelProblemInput& input, NodeValues* values, ceres::Problem* problem) {
+  const auto block = [values](int node) { return (*values)[static_cast<std::size_t>(node)].data(); };
+  const FrustumLutGrid& grid = input.level_lut.grid();
   for (int n = 0; n < grid.NumNodes(); ++n) {
-    if (!problem.HasParameterBlock(block(n))) continue;
-    problem.SetParameterLowerBound(block(n), 0, 0.0);
+    if (!problem->HasParameterBlock(block(n))) continue;
+    problem->SetParameterLowerBound(block(n), 0, 0.0);
     if (input.options.in_air) {
       (*values)[static_cast<std::size_t>(n)][1] = 0.0;
       if (n == input.gauge_node) {
-        problem.SetParameterBlockConstant(block(n));
+        problem->SetParameterBlockConstant(block(n));
       } else {
-        problem.SetManifold(block(n), new ceres::SubsetManifold(2, {1}));
+        problem->SetManifold(block(n), new ceres::SubsetManifold(2, {1}));
       }
     } else {
-      problem.SetParameterLowerBound(block(n), 1, 0.0);
-      if (n == input.gauge_node) problem.SetManifold(block(n), new ceres::SubsetManifold(2, {0}));
+      problem->SetParameterLowerBound(block(n), 1, 0.0);
+      if (n == input.gauge_node) problem->SetManifold(block(n), new ceres::SubsetManifold(2, {0}));
     }
   }
+}
+
+// Sparse Cholesky where the factor is small, conjugate gradients on the normal equations where it is not.
+ceres::Solver::Options ChannelSolverOptions(const ChannelProblemInput& input) {
+  const FrustumLutGrid& grid = input.level_lut.grid();
   ceres::Solver::Options solver_options;
   // Correspondences link nodes far apart in the frustum, and on a large level a sparse Cholesky factor of
   // such a problem fills in (measured on the Blender seafloor's 41 x 31 x 10 nodes: 8x slower); conjugate
@@ -251,8 +274,20 @@ ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channe
   solver_options.function_tolerance = input.options.function_tolerance;
   solver_options.num_threads = 1;  // parallel over channels instead
   solver_options.logging_type = ceres::SILENT;
+  return solver_options;
+}
+
+ceres::Solver::Summary SolveChannel(const ChannelProblemInput& input, int channel, NodeValues* values) {
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  AddKnownColorResiduals(input, channel, values, &problem);
+  AddCorrespondenceResiduals(input, channel, values, &problem);
+  if (!input.options.in_air) AddPureWaterResiduals(input, channel, values, &problem);
+  AddSmoothnessResiduals(input, channel, values, &problem);
+  BoundNodesAndFixGauge(input, values, &problem);
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options, &problem, &summary);
+  ceres::Solve(ChannelSolverOptions(input), &problem, &summary);
   return summary;
 }
 

@@ -124,6 +124,7 @@ Mesh ReadMesh(const std::filesystem::path& path) {
     LogInfo() << path.string() << ": dropped " << removed << " degenerate faces (repeated vertex or zero area)";
   }
   if (mesh.faces.empty()) throw std::runtime_error(path.string() + ": every face of the mesh is degenerate");
+  LogDebug() << "read mesh " << path.string() << ": " << mesh.NumFaces() << " faces";
   return mesh;
 }
 

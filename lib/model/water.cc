@@ -9,4 +9,21 @@ double HenyeyGreenstein(double cos_angle, double g) {
   return (1.0 - g * g) / (4.0 * M_PI * denominator * std::sqrt(denominator));
 }
 
+std::optional<Water> WaterPreset(const std::string& name) {
+  Water water;
+  water.anisotropy_g = 0.9;
+  if (name == "clear") {
+    water.absorption = Eigen::Vector3d(0.35, 0.05, 0.02);
+    water.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
+  } else if (name == "coastal") {
+    water.absorption = Eigen::Vector3d(0.45, 0.12, 0.25);
+    water.scattering = Eigen::Vector3d(0.35, 0.4, 0.38);
+  } else {
+    return std::nullopt;
+  }
+  return water;
+}
+
+const char* WaterPresetNames() { return "clear or coastal"; }
+
 }  // namespace lutex

@@ -3,6 +3,9 @@
 // A homogeneous medium: per-channel absorption a and scattering b [1/m], attenuation c = a + b, and a
 // Henyey-Greenstein phase function with anisotropy g. In air a = b = 0.
 
+#include <optional>
+#include <string>
+
 #include <Eigen/Core>
 
 namespace lutex {
@@ -17,6 +20,14 @@ struct Water {
 
   static Water Air() { return Water(); }
 };
+
+// Named waters, the starting points users pick by name (`lutex calibrate --reference-water`):
+//   "clear":   absorption 0.35 0.05 0.02, scattering 0.04 0.045 0.05 [1/m] (clear oceanic water), g 0.9
+//   "coastal": absorption 0.45 0.12 0.25, scattering 0.35 0.40 0.38 [1/m], g 0.9
+// Nothing for another name.
+std::optional<Water> WaterPreset(const std::string& name);
+// "clear or coastal", for messages.
+const char* WaterPresetNames();
 
 // Henyey-Greenstein phase function (normalised over the sphere: integrates to 1 over 4 pi sr) for the
 // cosine of the angle between the incoming propagation direction and the scattered direction.

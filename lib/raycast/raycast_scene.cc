@@ -3,11 +3,14 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lib/raycast/embree_ray_packet.h"
 #include "lib/util/parallel_for.h"
@@ -194,6 +197,242 @@ struct FacePlane {
   }
 };
 
+// Everything needed to fill the maps of one camera pose: the pose in float and double, the maps, and the
+// scene's triangles relative to the camera. Rendering is two passes (see RaycastScene::Render): cast the
+// samples, then fill the pixels between them from the triangles the samples hit, casting what cannot be
+// filled.
+class PoseRenderer {
+ public:
+  PoseRenderer(RTCScene scene, const Eigen::Vector3d& scene_origin, const std::vector<Eigen::Vector3d>& local_vertices,
+               const std::vector<Mesh::Face>& faces, const CameraRays& rays, const Rigid3d& cam_from_world,
+               const GeometryMapsOptions& options, GeometryMaps* maps)
+      : scene_(scene),
+        local_vertices_(local_vertices),
+        faces_(faces),
+        rays_(rays),
+        options_(options),
+        maps_(*maps),
+        cam_from_world_rotation_(cam_from_world.rotation.toRotationMatrix().cast<float>()),
+        world_from_cam_rotation_(cam_from_world_rotation_.transpose()),
+        cam_from_world_rotation_d_(cam_from_world.rotation.toRotationMatrix()),
+        centre_local_(cam_from_world.TargetOriginInSource() - scene_origin),
+        centre_(centre_local_.cast<float>()) {
+    AllocateMaps();
+  }
+
+  // Pass 1: the sample pixels (every `step`-th column and row, and always the last one), cast in packets
+  // of 4 x 4 samples.
+  void CastSamples(int step) {
+    for (int c = 0; c < rays_.width(); c += step) sample_cols_.push_back(c);
+    if (sample_cols_.back() != rays_.width() - 1) sample_cols_.push_back(rays_.width() - 1);
+    for (int r = 0; r < rays_.height(); r += step) sample_rows_.push_back(r);
+    if (sample_rows_.back() != rays_.height() - 1) sample_rows_.push_back(rays_.height() - 1);
+    const int block_rows = static_cast<int>((sample_rows_.size() + kBlock - 1) / kBlock);
+    const int block_cols = static_cast<int>((sample_cols_.size() + kBlock - 1) / kBlock);
+    ParallelFor(static_cast<std::size_t>(block_rows), options_.num_threads, [&](std::size_t block_row) {
+      std::array<std::pair<int, int>, 16> pixels;
+      for (int block_col = 0; block_col < block_cols; ++block_col) {
+        int count = 0;
+        for (int lane = 0; lane < 16; ++lane) {
+          const std::size_t sc = static_cast<std::size_t>(block_col * kBlock + lane % kBlock);
+          const std::size_t sr = block_row * kBlock + static_cast<std::size_t>(lane / kBlock);
+          if (sc < sample_cols_.size() && sr < sample_rows_.size()) pixels[count++] = {sample_cols_[sc], sample_rows_[sr]};
+        }
+        Cast(pixels, count);
+      }
+    });
+  }
+
+  // Pass 2: every other pixel. Its enclosing samples (the pixel itself where it is one) were written in
+  // pass 1 and are only read here, and each row writes only itself, so rows run in parallel.
+  void FillBetweenSamples() {
+    const std::vector<std::pair<int, int>> cols_around = Enclosing(sample_cols_, rays_.width());
+    const std::vector<std::pair<int, int>> rows_around = Enclosing(sample_rows_, rays_.height());
+    ParallelFor(static_cast<std::size_t>(rays_.height()), options_.num_threads, [&](std::size_t row_index) {
+      FillRow(static_cast<int>(row_index), rows_around[row_index], cols_around);
+    });
+  }
+
+ private:
+  // Every pixel is written exactly once (a hit or a miss), so the maps need no initial values.
+  void AllocateMaps() {
+    const int width = rays_.width(), height = rays_.height();
+    maps_.depth.create(height, width, CV_32F);
+    maps_.face_id.create(height, width, CV_32S);
+    if (options_.normal) {
+      maps_.normal.create(height, width, CV_32FC3);
+    } else {
+      maps_.normal.release();
+    }
+    if (options_.barycentrics) {
+      maps_.barycentrics.create(height, width, CV_32FC2);
+    } else {
+      maps_.barycentrics.release();
+    }
+  }
+
+  void Write(int col, int row, const PixelHit& hit) const {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    maps_.face_id.at<int>(row, col) = hit.face;
+    if (hit.face < 0) {
+      maps_.depth.at<float>(row, col) = nan;
+      if (options_.normal) maps_.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(nan, nan, nan);
+      if (options_.barycentrics) maps_.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(nan, nan);
+      return;
+    }
+    const Eigen::Vector3f& direction_in_cam = rays_.Direction(col, row);
+    maps_.depth.at<float>(row, col) = hit.distance * direction_in_cam.z();
+    if (options_.normal) {
+      Eigen::Vector3f normal_in_cam = hit.unit_normal_in_cam;
+      if (normal_in_cam.dot(direction_in_cam) > 0.0f) normal_in_cam = -normal_in_cam;
+      maps_.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
+    }
+    if (options_.barycentrics) maps_.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(hit.b1, hit.b2);
+  }
+
+  // Casts up to 16 pixels as one packet and writes what they hit.
+  void Cast(const std::array<std::pair<int, int>, 16>& pixels, int count) const {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(64) RTCRayHit16 packet;
+    alignas(64) int valid[16];
+    for (int lane = 0; lane < 16; ++lane) {
+      const bool used = lane < count;
+      const Eigen::Vector3f direction_in_cam =
+          used ? rays_.Direction(pixels[lane].first, pixels[lane].second) : Eigen::Vector3f::Constant(nan);
+      valid[lane] = used && direction_in_cam.allFinite() ? -1 : 0;
+      const Eigen::Vector3f direction =
+          valid[lane] ? Eigen::Vector3f(world_from_cam_rotation_ * direction_in_cam) : Eigen::Vector3f(0, 0, 1);
+      SetPacketRay(lane, centre_, direction, &packet);
+    }
+    rtcIntersect16(valid, scene_, &context, &packet);
+    for (int lane = 0; lane < count; ++lane) {
+      PixelHit hit;
+      if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID) {
+        hit.distance = packet.ray.tfar[lane];
+        hit.face = static_cast<int>(packet.hit.primID[lane]);
+        hit.b1 = packet.hit.u[lane];
+        hit.b2 = packet.hit.v[lane];
+        hit.unit_normal_in_cam =
+            (cam_from_world_rotation_ * Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]))
+                .normalized();
+      }
+      Write(pixels[lane].first, pixels[lane].second, hit);
+    }
+  }
+
+  // The triangle `face` prepared for this pose.
+  FacePlane Prepare(int face) const {
+    const Mesh::Face& corners = faces_[static_cast<std::size_t>(face)];
+    const auto in_cam = [&](std::uint32_t vertex) {
+      return Eigen::Vector3d(cam_from_world_rotation_d_ * (local_vertices_[vertex] - centre_local_));
+    };
+    return FacePlane(face, in_cam(corners[0]), in_cam(corners[1]), in_cam(corners[2]));
+  }
+
+  bool ShareVertex(int face_a, int face_b) const {
+    const Mesh::Face& a = faces_[static_cast<std::size_t>(face_a)];
+    const Mesh::Face& b = faces_[static_cast<std::size_t>(face_b)];
+    return std::any_of(a.begin(), a.end(), [&](auto vertex) { return std::find(b.begin(), b.end(), vertex) != b.end(); });
+  }
+
+  // The hit of a pixel between four samples, from the faces the samples hit, without casting. When all
+  // four hit one triangle: its plane (the pixel's ray lies between theirs, so it meets that triangle too).
+  // When they hit up to four triangles that pairwise share a vertex (one piece of surface across an edge
+  // or around a vertex): the nearest of them whose triangle the pixel's ray meets. Otherwise no hit
+  // (face -1), and the pixel is cast. `plane_of(face)` gives the prepared FacePlane of a face.
+  template <typename PlaneOf>
+  PixelHit HitAmongCornerFaces(const std::array<int, 4>& corners, const Eigen::Vector3f& direction_in_cam,
+                               PlaneOf& plane_of) const {
+    if (std::any_of(corners.begin(), corners.end(), [](int face) { return face < 0; })) return PixelHit{};
+    if (std::all_of(corners.begin(), corners.end(), [&](int face) { return face == corners[0]; })) {
+      return plane_of(corners[0]).Intersect(direction_in_cam);
+    }
+    std::array<int, 4> distinct{};
+    int count = 0;
+    for (const int face : corners) {
+      if (std::find(distinct.begin(), distinct.begin() + count, face) == distinct.begin() + count) distinct[count++] = face;
+    }
+    for (int i = 0; i < count; ++i) {
+      for (int j = i + 1; j < count; ++j) {
+        if (!ShareVertex(distinct[i], distinct[j])) return PixelHit{};
+      }
+    }
+    PixelHit nearest;
+    for (int i = 0; i < count; ++i) {
+      const PixelHit hit = plane_of(distinct[i]).Intersect(direction_in_cam);
+      const bool inside = hit.face >= 0 && hit.distance > 0.0f && hit.b1 >= 0.0f && hit.b2 >= 0.0f && hit.b1 + hit.b2 <= 1.0f;
+      if (inside && (nearest.face < 0 || hit.distance < nearest.distance)) nearest = hit;
+    }
+    return nearest;
+  }
+
+  // For every pixel 0..size-1 the samples around it: (i, i) where i is a sample.
+  static std::vector<std::pair<int, int>> Enclosing(const std::vector<int>& samples, int size) {
+    std::vector<std::pair<int, int>> result(static_cast<std::size_t>(size));
+    std::size_t s = 0;
+    for (int i = 0; i < size; ++i) {
+      while (s + 1 < samples.size() && samples[s + 1] <= i) ++s;
+      result[static_cast<std::size_t>(i)] = samples[s] == i ? std::make_pair(i, i) : std::make_pair(samples[s], samples[s + 1]);
+    }
+    return result;
+  }
+
+  // Pass 2 on one row: fills what the corner faces give, casts the rest in packets of 16.
+  void FillRow(int row, std::pair<int, int> rows_around, const std::vector<std::pair<int, int>>& cols_around) const {
+    const auto [row0, row1] = rows_around;
+    std::array<std::pair<int, int>, 16> pending;
+    int count = 0;
+    // The triangles this row met last, prepared (neighbouring pixels meet the same few), found by their
+    // ids (kept apart: scanning the planes themselves would touch a cache line each).
+    std::array<FacePlane, 8> recent;
+    std::array<int, 8> recent_faces;
+    recent_faces.fill(-1);
+    std::size_t next_slot = 0;
+    const auto plane_of = [&](int face) -> const FacePlane& {
+      for (std::size_t slot = 0; slot < recent_faces.size(); ++slot) {
+        if (recent_faces[slot] == face) return recent[slot];
+      }
+      const std::size_t slot = next_slot++ % recent.size();
+      recent[slot] = Prepare(face);
+      recent_faces[slot] = face;
+      return recent[slot];
+    };
+    const cv::Mat& faces = maps_.face_id;
+    for (int col = 0; col < rays_.width(); ++col) {
+      const auto [col0, col1] = cols_around[static_cast<std::size_t>(col)];
+      if (row0 == row && row1 == row && col0 == col && col1 == col) continue;  // a sample
+      const std::array<int, 4> corners = {faces.at<int>(row0, col0), faces.at<int>(row0, col1),
+                                          faces.at<int>(row1, col0), faces.at<int>(row1, col1)};
+      const PixelHit hit = HitAmongCornerFaces(corners, rays_.Direction(col, row), plane_of);
+      if (hit.face >= 0) {
+        Write(col, row, hit);
+        continue;
+      }
+      pending[count++] = {col, row};
+      if (count == 16) {
+        Cast(pending, count);
+        count = 0;
+      }
+    }
+    if (count > 0) Cast(pending, count);
+  }
+
+  RTCScene scene_;
+  const std::vector<Eigen::Vector3d>& local_vertices_;
+  const std::vector<Mesh::Face>& faces_;
+  const CameraRays& rays_;
+  const GeometryMapsOptions& options_;
+  GeometryMaps& maps_;
+  const Eigen::Matrix3f cam_from_world_rotation_;
+  const Eigen::Matrix3f world_from_cam_rotation_;
+  const Eigen::Matrix3d cam_from_world_rotation_d_;
+  const Eigen::Vector3d centre_local_;  // the camera centre relative to the scene's origin
+  const Eigen::Vector3f centre_;
+  std::vector<int> sample_cols_, sample_rows_;
+};
+
 }  // namespace
 
 GeometryMaps RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
@@ -208,201 +447,10 @@ void RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
   if (!cam_from_world.IsValid()) {
     throw std::invalid_argument("pose for ray casting is not finite or its quaternion is not unit");
   }
-  const int width = rays.width();
-  const int height = rays.height();
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  // Every pixel is written exactly once (a hit or a miss), so the maps need no initial values.
-  GeometryMaps& maps = *output;
-  maps.depth.create(height, width, CV_32F);
-  maps.face_id.create(height, width, CV_32S);
-  if (options.normal) {
-    maps.normal.create(height, width, CV_32FC3);
-  } else {
-    maps.normal.release();
-  }
-  if (options.barycentrics) {
-    maps.barycentrics.create(height, width, CV_32FC2);
-  } else {
-    maps.barycentrics.release();
-  }
-  cv::Mat& faces = maps.face_id;
-
-  const Eigen::Matrix3f cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix().cast<float>();
-  const Eigen::Matrix3f world_from_cam_rotation = cam_from_world_rotation.transpose();
-  const Eigen::Vector3d centre_local = cam_from_world.TargetOriginInSource() - impl_->origin;
-  const Eigen::Vector3f centre = centre_local.cast<float>();
-
-  const auto write = [&](int col, int row, const PixelHit& hit) {
-    faces.at<int>(row, col) = hit.face;
-    if (hit.face < 0) {
-      maps.depth.at<float>(row, col) = nan;
-      if (options.normal) maps.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(nan, nan, nan);
-      if (options.barycentrics) maps.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(nan, nan);
-      return;
-    }
-    const Eigen::Vector3f& direction_in_cam = rays.Direction(col, row);
-    maps.depth.at<float>(row, col) = hit.distance * direction_in_cam.z();
-    if (options.normal) {
-      Eigen::Vector3f normal_in_cam = hit.unit_normal_in_cam;
-      if (normal_in_cam.dot(direction_in_cam) > 0.0f) normal_in_cam = -normal_in_cam;
-      maps.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
-    }
-    if (options.barycentrics) maps.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(hit.b1, hit.b2);
-  };
-
-  // Casts up to 16 pixels as one packet and writes what they hit.
-  const auto cast = [&](const std::array<std::pair<int, int>, 16>& pixels, int count) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    alignas(64) RTCRayHit16 packet;
-    alignas(64) int valid[16];
-    for (int lane = 0; lane < 16; ++lane) {
-      const bool used = lane < count;
-      const Eigen::Vector3f direction_in_cam =
-          used ? rays.Direction(pixels[lane].first, pixels[lane].second) : Eigen::Vector3f::Constant(nan);
-      valid[lane] = used && direction_in_cam.allFinite() ? -1 : 0;
-      const Eigen::Vector3f direction =
-          valid[lane] ? Eigen::Vector3f(world_from_cam_rotation * direction_in_cam) : Eigen::Vector3f(0, 0, 1);
-      SetPacketRay(lane, centre, direction, &packet);
-    }
-    rtcIntersect16(valid, impl_->scene, &context, &packet);
-    for (int lane = 0; lane < count; ++lane) {
-      PixelHit hit;
-      if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID) {
-        hit.distance = packet.ray.tfar[lane];
-        hit.face = static_cast<int>(packet.hit.primID[lane]);
-        hit.b1 = packet.hit.u[lane];
-        hit.b2 = packet.hit.v[lane];
-        hit.unit_normal_in_cam =
-            (cam_from_world_rotation * Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]))
-                .normalized();
-      }
-      write(pixels[lane].first, pixels[lane].second, hit);
-    }
-  };
-
-  // The triangle `face` prepared for this pose.
-  const Eigen::Matrix3d cam_from_world_rotation_d = cam_from_world.rotation.toRotationMatrix();
-  const auto prepare = [&](int face) {
-    const Mesh::Face& corners = impl_->faces[static_cast<std::size_t>(face)];
-    const auto in_cam = [&](std::uint32_t vertex) {
-      return Eigen::Vector3d(cam_from_world_rotation_d * (impl_->local_vertices[vertex] - centre_local));
-    };
-    return FacePlane(face, in_cam(corners[0]), in_cam(corners[1]), in_cam(corners[2]));
-  };
-
-  // The hit of a pixel between four samples, from the faces the samples hit, without casting. When all
-  // four hit one triangle: its plane (the pixel's ray lies between theirs, so it meets that triangle too).
-  // When they hit up to four triangles that pairwise share a vertex (one piece of surface across an edge
-  // or around a vertex): the nearest of them whose triangle the pixel's ray meets. Otherwise no hit
-  // (face -1), and the pixel is cast.
-  const auto share_vertex = [&](int face_a, int face_b) {
-    const Mesh::Face& a = impl_->faces[static_cast<std::size_t>(face_a)];
-    const Mesh::Face& b = impl_->faces[static_cast<std::size_t>(face_b)];
-    return std::any_of(a.begin(), a.end(), [&](auto vertex) { return std::find(b.begin(), b.end(), vertex) != b.end(); });
-  };
-  // `plane_of(face)` gives the prepared FacePlane of a face.
-  const auto hit_among_corner_faces = [&](const std::array<int, 4>& corners, const Eigen::Vector3f& direction_in_cam,
-                                          auto& plane_of) {
-    if (std::any_of(corners.begin(), corners.end(), [](int face) { return face < 0; })) return PixelHit{};
-    if (std::all_of(corners.begin(), corners.end(), [&](int face) { return face == corners[0]; })) {
-      return plane_of(corners[0]).Intersect(direction_in_cam);
-    }
-    std::array<int, 4> distinct{};
-    int count = 0;
-    for (const int face : corners) {
-      if (std::find(distinct.begin(), distinct.begin() + count, face) == distinct.begin() + count) distinct[count++] = face;
-    }
-    for (int i = 0; i < count; ++i) {
-      for (int j = i + 1; j < count; ++j) {
-        if (!share_vertex(distinct[i], distinct[j])) return PixelHit{};
-      }
-    }
-    PixelHit nearest;
-    for (int i = 0; i < count; ++i) {
-      const PixelHit hit = plane_of(distinct[i]).Intersect(direction_in_cam);
-      const bool inside = hit.face >= 0 && hit.distance > 0.0f && hit.b1 >= 0.0f && hit.b2 >= 0.0f && hit.b1 + hit.b2 <= 1.0f;
-      if (inside && (nearest.face < 0 || hit.distance < nearest.distance)) nearest = hit;
-    }
-    return nearest;
-  };
-
-  const int step = options.adaptive ? 2 : 1;
-  // Sample columns and rows: every `step`-th, and always the last one.
-  std::vector<int> sample_cols, sample_rows;
-  for (int c = 0; c < width; c += step) sample_cols.push_back(c);
-  if (sample_cols.back() != width - 1) sample_cols.push_back(width - 1);
-  for (int r = 0; r < height; r += step) sample_rows.push_back(r);
-  if (sample_rows.back() != height - 1) sample_rows.push_back(height - 1);
-
-  // Pass 1: the samples, in packets of 4 x 4 samples.
-  const int block_rows = static_cast<int>((sample_rows.size() + kBlock - 1) / kBlock);
-  const int block_cols = static_cast<int>((sample_cols.size() + kBlock - 1) / kBlock);
-  ParallelFor(static_cast<std::size_t>(block_rows), options.num_threads, [&](std::size_t block_row) {
-    std::array<std::pair<int, int>, 16> pixels;
-    for (int block_col = 0; block_col < block_cols; ++block_col) {
-      int count = 0;
-      for (int lane = 0; lane < 16; ++lane) {
-        const std::size_t sc = static_cast<std::size_t>(block_col * kBlock + lane % kBlock);
-        const std::size_t sr = block_row * kBlock + static_cast<std::size_t>(lane / kBlock);
-        if (sc < sample_cols.size() && sr < sample_rows.size()) pixels[count++] = {sample_cols[sc], sample_rows[sr]};
-      }
-      cast(pixels, count);
-    }
-  });
-  if (step == 1) return;
-
-  // Pass 2: every other pixel. Its enclosing samples (the pixel itself where it is one) were written in
-  // pass 1 and are only read here, and each row writes only itself, so rows run in parallel.
-  const auto enclosing = [](const std::vector<int>& samples, int size) {
-    std::vector<std::pair<int, int>> result(static_cast<std::size_t>(size));
-    std::size_t s = 0;
-    for (int i = 0; i < size; ++i) {
-      while (s + 1 < samples.size() && samples[s + 1] <= i) ++s;
-      result[static_cast<std::size_t>(i)] = samples[s] == i ? std::make_pair(i, i) : std::make_pair(samples[s], samples[s + 1]);
-    }
-    return result;
-  };
-  const std::vector<std::pair<int, int>> cols_around = enclosing(sample_cols, width);
-  const std::vector<std::pair<int, int>> rows_around = enclosing(sample_rows, height);
-  ParallelFor(static_cast<std::size_t>(height), options.num_threads, [&](std::size_t row_index) {
-    const int row = static_cast<int>(row_index);
-    const auto [row0, row1] = rows_around[row_index];
-    std::array<std::pair<int, int>, 16> pending;
-    int count = 0;
-    // The triangles this row met last, prepared (neighbouring pixels meet the same few), found by their
-    // ids (kept apart: scanning the planes themselves would touch a cache line each).
-    std::array<FacePlane, 8> recent;
-    std::array<int, 8> recent_faces;
-    recent_faces.fill(-1);
-    std::size_t next_slot = 0;
-    const auto plane_of = [&](int face) -> const FacePlane& {
-      for (std::size_t slot = 0; slot < recent_faces.size(); ++slot) {
-        if (recent_faces[slot] == face) return recent[slot];
-      }
-      const std::size_t slot = next_slot++ % recent.size();
-      recent[slot] = prepare(face);
-      recent_faces[slot] = face;
-      return recent[slot];
-    };
-    for (int col = 0; col < width; ++col) {
-      const auto [col0, col1] = cols_around[static_cast<std::size_t>(col)];
-      if (row0 == row && row1 == row && col0 == col && col1 == col) continue;  // a sample
-      const std::array<int, 4> corners = {faces.at<int>(row0, col0), faces.at<int>(row0, col1),
-                                          faces.at<int>(row1, col0), faces.at<int>(row1, col1)};
-      const PixelHit hit = hit_among_corner_faces(corners, rays.Direction(col, row), plane_of);
-      if (hit.face >= 0) {
-        write(col, row, hit);
-        continue;
-      }
-      pending[count++] = {col, row};
-      if (count == 16) {
-        cast(pending, count);
-        count = 0;
-      }
-    }
-    if (count > 0) cast(pending, count);
-  });
+  PoseRenderer renderer(impl_->scene, impl_->origin, impl_->local_vertices, impl_->faces, rays, cam_from_world,
+                        options, output);
+  renderer.CastSamples(options.adaptive ? 2 : 1);
+  if (options.adaptive) renderer.FillBetweenSamples();
 }
 
 }  // namespace lutex

@@ -6,18 +6,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/io/sparse_model_io.h"
 #include "lib/geometry/mesh_io.h"
 
 namespace lutex::testing {
 
 namespace fs = std::filesystem;
-
-std::optional<fs::path> SharedDevDatasets() {
-  const fs::path dev = fs::path(LUTEX_SHARED_DATASETS) / "dev";
-  if (fs::is_directory(dev)) return dev;
-  return std::nullopt;
-}
 
 BlenderDataset LoadBlenderDataset(const fs::path& root) {
   std::ifstream stream(root / "metadata.json");

@@ -1,21 +1,19 @@
 #pragma once
 
 // The shared Blender Cycles datasets (../shared/datasets/dev/*, see their README): the model, mesh,
-// light rig and water of one dataset, read from its metadata.json, as lutex's simulator takes them.
+// light rig and water of one dataset, read from its metadata.json, as lutex's simulator takes them. The
+// model is read with the COLMAP reader (colmap_integration/io): tests using this link lutex_colmap_io.
 
 #include <filesystem>
-#include <optional>
 #include <string>
 
-#include "colmap_integration/sparse_model.h"
+#include "lib/geometry/sparse_model.h"
 #include "lib/geometry/mesh.h"
 #include "lib/model/light_rig.h"
 #include "lib/model/water.h"
+#include "tests/support/shared_datasets.h"
 
 namespace lutex::testing {
-
-// The dev/ folder of the shared datasets, or nothing when it is absent (tests then skip).
-std::optional<std::filesystem::path> SharedDevDatasets();
 
 struct BlenderDataset {
   std::filesystem::path root;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "colmap_integration/sparse_model_io.h"
+#include "colmap_integration/io/sparse_model_io.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/image/image_io.h"
 #include "lib/raycast/raycast_scene.h"

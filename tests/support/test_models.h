@@ -3,7 +3,7 @@
 // A sparse model with every field filled: one camera per model id in [0, num_models), images with
 // 2-D points (some without 3-D point), 3-D points with tracks. Fixed seed.
 
-#include "colmap_integration/sparse_model.h"
+#include "lib/geometry/sparse_model.h"
 
 namespace lutex::testing {
 

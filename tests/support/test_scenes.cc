@@ -13,9 +13,7 @@
 namespace lutex::testing {
 
 Water ClearWater() {
-  Water water;
-  water.absorption = Eigen::Vector3d(0.35, 0.05, 0.02);
-  water.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
+  Water water = *WaterPreset("clear");
   water.anisotropy_g = 0.88;
   return water;
 }

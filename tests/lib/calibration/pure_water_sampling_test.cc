@@ -15,7 +15,7 @@
 #include "lib/image/image_io.h"
 #include "lib/model/sensor.h"
 #include "lib/model/simulator.h"
-#include "tests/support/blender_dataset.h"
+#include "tests/support/shared_datasets.h"
 #include "tests/support/test_scenes.h"
 
 namespace lutex {

@@ -1,0 +1,43 @@
+#include "colmap_integration/cli/restore_command.h"
+
+#include <iomanip>
+#include <iostream>
+
+#include "colmap_integration/cli/dive_options.h"
+#include "colmap_integration/cli/image_encoding_option.h"
+
+namespace lutex {
+
+int RunRestoreCommand(int argc, char** argv) {
+  RestoreOptions options;
+  OptionParser parser(
+      "lutex restore --workspace W --mesh M --lut L [--output DIR] [--input-encoding E] [--output-encoding E]",
+      "Restores every registered image of the COLMAP workspace W to albedo with the LUT L (lutex calibrate):\n"
+      "per pixel, the mesh gives the surface point and its shading cos_theta, the LUT gives alpha and beta,\n"
+      "and albedo = (I - beta) / (alpha cos_theta). Writes DIR/NAME (default DIR: W/lutex/restored) and an\n"
+      "8-bit confidence map DIR_confidence/NAME.png per image (255 = fully trusted; low where the signal is\n"
+      "weak, the pixel saturated, the surface seen at a grazing angle, or the LUT there not constrained by\n"
+      "calibration data). Pixels without a surface are 0.\n"
+      "Input encoding: srgb8 (8-bit sRGB, cameras' JPEGs; the default), linear16 (16-bit linear PNG/TIFF) or\n"
+      "float (EXR). Output encoding: same (as the input; the default), srgb8, linear16 or float.");
+  AddDiveOptions(parser, &options.workspace, &options.mesh);
+  parser.AddPath("lut", &options.lut, "Calibrated LUT file.", true);
+  parser.AddPath("coverage", &options.coverage,
+                 "Per-node coverage of the LUT (default: coverage.lut beside the LUT, when present).");
+  parser.AddPath("output", &options.output, "Output folder (default W/lutex/restored).");
+  AddImageEncodingOption(parser, "input-encoding", &options.input_encoding, "How W's images are encoded:");
+  AddThreadsOption(parser, &options.num_threads);
+  AddRestoreStageOptions(parser, &options);
+  if (!parser.Parse(argc, argv, 2)) return 0;
+  parser.RunWithFlags([&] {
+    PrintRestoreSummary(std::cout, RestoreWorkspace(options));
+  });
+  return 0;
+}
+
+void AddRestoreStageOptions(OptionParser& parser, RestoreOptions* options) {
+  parser.AddFlag("no-coverage", &options->ignore_coverage, "Ignore the LUT's coverage in the confidence maps.");
+  parser.AddString("output-encoding", &options->output_encoding, "Restored images: same (as the input), srgb8, linear16 or float.");
+}
+
+}  // namespace lutex

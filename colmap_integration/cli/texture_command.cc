@@ -1,0 +1,71 @@
+#include "colmap_integration/cli/texture_command.h"
+
+#include <iomanip>
+#include <iostream>
+#include <stdexcept>
+
+#include "colmap_integration/cli/dive_options.h"
+#include "colmap_integration/cli/image_encoding_option.h"
+
+namespace lutex {
+
+int RunTextureCommand(int argc, char** argv) {
+  TextureOptions options;
+  OptionParser parser(
+      "lutex texture --workspace W --mesh M [--images DIR] [--texel-size S] [--output model.glb]",
+      "Bakes one albedo texture for the mesh M from the registered images of the COLMAP workspace W and\n"
+      "writes a textured model that map viewers load (GLB by default; .gltf, .obj + .mtl + PNG pages, or a\n"
+      "single-page .ply with per-corner texcoords by the output's extension).\n"
+      "Steps: which views see each face (exact occlusion from ray casting); one view per face chosen by an\n"
+      "MRF (quality = resolution x unoccluded fraction x restoration confidence, Potts smoothness between\n"
+      "faces, loopy belief propagation); charts of faces with the same view, projected into it and packed\n"
+      "into atlas pages; each texel's colour a robust weighted fusion of every view that sees it (outliers\n"
+      "such as particles and highlights rejected), or the chosen view only with --blend single.\n"
+      "Images: DIR (default W/lutex/restored from lutex restore, else W/images), confidence maps from\n"
+      "DIR_confidence when present. Images are streamed from disk; memory depends on the mesh and the atlas,\n"
+      "not on the number of images.");
+  AddDiveOptions(parser, &options.workspace, &options.mesh);
+  parser.AddPath("images", &options.images, "Images to texture from (default W/lutex/restored, else W/images).");
+  AddImageEncodingOption(parser, "image-encoding", &options.image_encoding, "How those images are encoded:");
+  parser.AddPath("confidence", &options.confidence, "Confidence maps (default DIR_confidence when present).");
+  parser.AddPath("output", &options.output, "Textured model: .glb (default W/lutex/model.glb), .gltf, .obj or .ply.");
+  AddImageEncodingOption(parser, "page-encoding", &options.page_encoding,
+                         "OBJ/PLY pages (glTF pages are always srgb8):");
+  AddThreadsOption(parser, &options.baking.num_threads);
+  AddTextureStageOptions(parser, &options);
+  if (!parser.Parse(argc, argv, 2)) return 0;
+  parser.RunWithFlags([&] {
+    PrintTextureSummary(std::cout, TextureWorkspace(options));
+  });
+  return 0;
+}
+
+void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
+  TextureBakingOptions& baking = options->baking;
+  parser.AddFlag("no-confidence", &options->ignore_confidence, "Trust every pixel equally.");
+  parser.AddDouble("texel-size", &baking.charts.texel_size,
+                   "Texel size in scene units (e.g. 0.001 = 1 mm if the model is in metres), the same at any\n"
+                   "      range; 0 (default) = the native resolution of each chart's view.");
+  parser.AddCustom("blend", "fuse", "fuse (robust weighted fusion of all views) or single (one view per face).",
+                   [&baking](const std::string& text) { baking.fusion.blend = ParseTexelBlend(text); });
+  parser.AddDouble("view-smoothness", &baking.selection.smoothness,
+                   "Potts weight between adjacent faces from different views (0 = best view per face).");
+  parser.AddInt("max-views-per-face", &baking.visibility.max_views_per_face,
+                "Best views kept per face for selection and fusion.");
+  parser.AddInt("max-page-size", &baking.charts.max_size, "Largest atlas page side in texels.");
+  parser.AddInt("padding", &baking.charts.padding, "Texels around each chart.");
+  parser.AddCustom("memory-limit", std::to_string(baking.fusion.memory_limit_bytes >> 20),
+                   "MiB for the per-texel sample buffers of one pass over the images; a larger atlas is done in\n"
+                   "      several passes.",
+                   [&baking](const std::string& text) {
+                     double mib = 0.0;
+                     try {
+                       mib = std::stod(text);
+                     } catch (const std::exception&) {
+                     }
+                     if (!(mib >= 1.0)) throw std::invalid_argument("--memory-limit must be at least 1 MiB, not '" + text + "'");
+                     baking.fusion.memory_limit_bytes = static_cast<std::size_t>(mib * 1024.0 * 1024.0);
+                   });
+}
+
+}  // namespace lutex

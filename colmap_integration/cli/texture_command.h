@@ -1,0 +1,16 @@
+#pragma once
+
+
+#include "colmap_integration/cli/option_parser.h"
+#include "colmap_integration/stages/texture_workspace.h"
+
+namespace lutex {
+
+// `lutex texture`: parses the options and calls TextureWorkspace (texture_workspace.h).
+int RunTextureCommand(int argc, char** argv);
+
+// Registers how to bake: the options of `lutex texture` except --workspace, --mesh, --images,
+// --image-encoding, --confidence, --output, --page-encoding and --num-threads (which `lutex run` sets).
+void AddTextureStageOptions(OptionParser& parser, TextureOptions* options);
+
+}  // namespace lutex

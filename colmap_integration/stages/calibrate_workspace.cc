@@ -1,0 +1,406 @@
+#include "colmap_integration/stages/calibrate_workspace.h"
+
+#include <iomanip>
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "lib/raycast/images_by_camera.h"
+#include "lib/model/light_rig_json.h"
+#include "colmap_integration/io/sparse_model_io.h"
+#include "lib/calibration/survey_correspondences.h"
+#include "colmap_integration/io/workspace.h"
+#include "lib/calibration/charuco_target.h"
+#include "lib/calibration/chessboard_target.h"
+#include "lib/calibration/pure_water_sampling.h"
+#include "lib/calibration/targets.h"
+#include "lib/geometry/mesh_io.h"
+#include "lib/lut/lut_file.h"
+#include "lib/lut/lut_slab_images.h"
+#include "lib/model/simulator.h"
+#include "lib/raycast/raycast_scene.h"
+#include "lib/util/file_streams.h"
+#include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
+#include "lib/util/progress.h"
+#include "lib/util/option_error.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+Water ReferenceWater(const CalibrateOptions& options) {
+  return options.calibration.in_air ? Water::Air() : *WaterPreset(options.reference_water);
+}
+
+// Coarse-to-fine levels ending at nx x ny: a tenth and a half of it where they divide (paper: 4x3, 20x15).
+std::vector<std::pair<int, int>> DefaultLevels(int nx, int ny) {
+  std::vector<std::pair<int, int>> levels;
+  for (int divisor : {10, 2}) {
+    if (nx % divisor == 0 && ny % divisor == 0 && nx / divisor >= 1 && ny / divisor >= 1) {
+      levels.emplace_back(nx / divisor, ny / divisor);
+    }
+  }
+  levels.emplace_back(nx, ny);
+  return levels;
+}
+
+const Camera& SingleImageSize(const SparseModel& model, const fs::path& where) {
+  const Camera& first = model.cameras.begin()->second;
+  for (const auto& [id, camera] : model.cameras) {
+    if (camera.width != first.width || camera.height != first.height) {
+      throw std::runtime_error(where.string() + ": cameras of different image sizes; a LUT is for one size");
+    }
+  }
+  return first;
+}
+
+// Known-colour observations from the images of `workspace` (the targets' geometry from `scene`), per image
+// in parallel, gathered in image order so the solve is the same at any thread count.
+std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions& options,
+                                                          const std::vector<Target>& targets,
+                                                          const Workspace& workspace, const SparseModel& model,
+                                                          const RaycastScene& scene) {
+  KnownColorSamplingOptions sampling = options.sampling;
+  sampling.shading = options.calibration.grid.shading;
+  std::map<std::uint32_t, std::vector<KnownColorObservation>> per_image;
+  std::mutex per_image_mutex;
+  ForEachImageWithMaps(model, scene, options.num_threads, "target images",
+                       [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
+    const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
+    const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
+    std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
+    // In a survey most images show no target; in calibration images that is worth a warning.
+    if (observations.empty() && !options.targets_workspace.empty()) {
+      LogWarning() << image.name << ": no target pixels found; the image is skipped";
+    }
+    std::lock_guard<std::mutex> lock(per_image_mutex);
+    per_image[image.image_id] = std::move(observations);
+  });
+  std::vector<KnownColorObservation> observations;
+  for (auto& [id, list] : per_image) observations.insert(observations.end(), list.begin(), list.end());
+  if (observations.empty()) {
+    throw std::runtime_error(options.targets.string() + ": no image of " + workspace.images_dir.string() +
+                             " shows any target pixel");
+  }
+  return observations;
+}
+
+// The board of `path` (a chessboard or a ChArUco board, by the file's top-level key) as a function from
+// an image to its maps, nothing where the board is not found; `what` names the board for messages.
+std::function<std::optional<BoardMaps>(const cv::Mat&, const CameraRays&)> BoardFinder(const fs::path& path,
+                                                                                           const Camera& camera,
+                                                                                           std::string* what) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error(path.string() + ": no such board file");
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(file);
+  } catch (const nlohmann::json::exception& error) {
+    throw std::runtime_error(path.string() + ": not a board file (" + error.what() + ")");
+  }
+  if (json.contains("charuco")) {
+    const CharucoSpec spec = ReadCharucoSpec(path);
+    *what = "ChArUco board of " + std::to_string(spec.squares_x) + " x " + std::to_string(spec.squares_y) + " squares";
+    return [spec, camera](const cv::Mat& image, const CameraRays& rays) -> std::optional<BoardMaps> {
+      const std::optional<BoardView> view = FindCharuco(image, camera, spec);
+      if (!view) return std::nullopt;
+      return RenderCharuco(spec, *view, rays);
+    };
+  }
+  const ChessboardSpec spec = ReadChessboardSpec(path);
+  *what = "chessboard of " + std::to_string(spec.inner_corners_x) + " x " + std::to_string(spec.inner_corners_y) +
+          " inner corners";
+  return [spec, camera](const cv::Mat& image, const CameraRays& rays) -> std::optional<BoardMaps> {
+    const std::optional<BoardView> view = FindChessboard(image, camera, spec);
+    if (!view) return std::nullopt;
+    return RenderChessboard(spec, *view, rays, image);
+  };
+}
+
+// Known colours from the board (chessboard or ChArUco) in every image of options.chessboard_images (sorted
+// by name; images where OpenCV does not find it are skipped with a warning).
+std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions& options, const Camera& camera,
+                                                          CalibrateSummary* summary) {
+  std::string board_name;
+  const auto find_board = BoardFinder(options.chessboard, camera, &board_name);
+  if (!fs::is_directory(options.chessboard_images)) {
+    throw std::runtime_error(options.chessboard_images.string() + ": no such folder");
+  }
+  std::vector<fs::path> paths;
+  for (const auto& entry : fs::directory_iterator(options.chessboard_images)) {
+    std::string extension = entry.path().extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (entry.is_regular_file() && (extension == ".png" || extension == ".jpg" || extension == ".jpeg" ||
+                                    extension == ".tif" || extension == ".tiff" || extension == ".exr")) {
+      paths.push_back(entry.path());
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  if (paths.empty()) throw std::runtime_error(options.chessboard_images.string() + ": no images");
+  KnownColorSamplingOptions sampling = options.sampling;
+  sampling.shading = options.calibration.grid.shading;
+  const CameraRays rays(camera, options.num_threads);
+  std::vector<std::vector<KnownColorObservation>> per_image(paths.size());
+  ProgressReporter progress("board images", paths.size(), "images");
+  ParallelFor(paths.size(), options.num_threads, [&](std::size_t i) {
+    const cv::Mat image = ReadLinearImage(paths[i], options.input_encoding);
+    if (image.cols != static_cast<int>(camera.width) || image.rows != static_cast<int>(camera.height)) {
+      throw std::runtime_error(paths[i].string() + ": the image is " + std::to_string(image.cols) + "x" +
+                               std::to_string(image.rows) + " but the camera is " + std::to_string(camera.width) + "x" +
+                               std::to_string(camera.height));
+    }
+    const std::optional<BoardMaps> board = find_board(image, rays);
+    if (!board) {
+      LogWarning() << paths[i].string() << ": no " << board_name << " found; the image is skipped";
+    } else {
+      per_image[i] = SampleKnownColors(image, board->known_albedo, board->maps, rays, sampling);
+    }
+    progress.Advance();
+  });
+  std::vector<KnownColorObservation> observations;
+  for (const auto& list : per_image) {
+    summary->num_chessboard_images += list.empty() ? 0 : 1;
+    observations.insert(observations.end(), list.begin(), list.end());
+  }
+  if (observations.empty()) {
+    throw std::runtime_error(options.chessboard_images.string() + ": the " + board_name + " of " +
+                             options.chessboard.string() + " was found in none of the images");
+  }
+  return observations;
+}
+
+// Pure-water bounds from the images of options.pure_water, screened for surfaces in view (skipped with a
+// warning naming the image and why).
+std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& options, const Camera& camera,
+                                                        CalibrateSummary* summary) {
+  const Workspace workspace = FindWorkspace(options.pure_water);
+  const SparseModel model = ReadSparseModel(workspace.sparse_dir);
+  std::vector<std::vector<PureWaterObservation>> per_image;
+  std::vector<PureWaterImageStats> stats;
+  std::vector<fs::path> paths;
+  for (const auto& [id, image] : model.images) {
+    const Camera& water_camera = model.cameras.at(image.camera_id);
+    paths.push_back(workspace.images_dir / image.name);
+    if (water_camera.width != camera.width || water_camera.height != camera.height) {
+      throw std::runtime_error(paths.back().string() + ": pure-water image of another size than the calibration images");
+    }
+    const cv::Mat observed = ReadLinearImage(paths.back(), options.input_encoding);
+    stats.push_back(MeasurePureWaterImage(observed));
+    per_image.push_back(SamplePureWater(observed, options.pure_water_stride));
+  }
+  const std::vector<std::string> reasons = ScreenPureWaterImages(stats, options.pure_water_screening);
+  std::vector<PureWaterObservation> observations;
+  for (std::size_t i = 0; i < per_image.size(); ++i) {
+    if (!reasons[i].empty()) {
+      LogWarning() << paths[i].string() << ": skipped as a pure-water image, it seems to show a surface: " << reasons[i];
+      ++summary->num_pure_water_skipped;
+      continue;
+    }
+    observations.insert(observations.end(), per_image[i].begin(), per_image[i].end());
+    ++summary->num_pure_water_images;
+  }
+  if (observations.empty()) {
+    throw std::runtime_error(options.pure_water.string() + ": none of its images looks like pure water");
+  }
+  return observations;
+}
+
+// A LUT is for one image size: the separate target images must have the survey's.
+void CheckSameImageSize(const Camera& targets_camera, const Camera& camera, const Workspace& targets_workspace) {
+  if (targets_camera.width != camera.width || targets_camera.height != camera.height) {
+    throw std::runtime_error(targets_workspace.sparse_dir.string() + ": the target images are " +
+                             std::to_string(targets_camera.width) + "x" + std::to_string(targets_camera.height) +
+                             " but the survey's are " + std::to_string(camera.width) + "x" +
+                             std::to_string(camera.height) + "; a LUT is for one image size");
+  }
+}
+
+// The calibration summary file beside the LUT: observation counts, residuals per constraint type,
+// levels, histograms, time.
+void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationResult& result) {
+  nlohmann::json json;
+  json["known_color_observations"] = result.summary.num_known_color;
+  json["pure_water_observations"] = result.summary.num_pure_water;
+  json["known_color_rms"] = {result.summary.known_color_rms.x(), result.summary.known_color_rms.y(),
+                             result.summary.known_color_rms.z()};
+  json["pure_water_max_violation"] = {result.summary.pure_water_max_violation.x(),
+                                      result.summary.pure_water_max_violation.y(),
+                                      result.summary.pure_water_max_violation.z()};
+  json["target_images"] = summary.num_target_images;
+  json["chessboard_images"] = summary.num_chessboard_images;
+  json["superpixel_samples"] = summary.num_superpixel_samples;
+  json["correspondences"] = result.summary.num_correspondences;
+  json["correspondence_albedo_rms"] = {result.summary.correspondence_albedo_rms.x(),
+                                       result.summary.correspondence_albedo_rms.y(),
+                                       result.summary.correspondence_albedo_rms.z()};
+  json["pure_water_images"] = summary.num_pure_water_images;
+  json["pure_water_images_skipped"] = summary.num_pure_water_skipped;
+  json["covered_fraction"] = result.summary.covered_fraction;
+  json["seconds"] = result.summary.seconds;
+  for (const CalibrationLevelSummary& level : result.summary.levels) {
+    json["levels"].push_back({{"nx", level.nx}, {"ny", level.ny},
+                              {"iterations", {level.iterations[0], level.iterations[1], level.iterations[2]}},
+                              {"final_cost", {level.final_cost[0], level.final_cost[1], level.final_cost[2]}}});
+  }
+  const auto histogram_json = [](const ResidualHistogram& histogram) {
+    nlohmann::json entry;
+    entry["range"] = histogram.range();
+    for (int c = 0; c < 3; ++c) entry["counts"].push_back(histogram.counts(c));
+    return entry;
+  };
+  json["residual_histograms"] = {
+      {"known_color", histogram_json(result.summary.known_color_residuals)},
+      {"correspondence_albedo_difference", histogram_json(result.summary.correspondence_albedo_differences)},
+      {"pure_water_excess", histogram_json(result.summary.pure_water_excess)}};
+  WriteFileAtomically(CalibrationSummaryPath(summary.lut), std::ios::out,
+                      [&json](std::ostream& stream) { stream << json.dump(2) << "\n"; });
+}
+
+// Every observation the options ask for: known colours from the targets (in the workspace's images or
+// separate ones) and the board, correspondences across the survey, pure-water bounds.
+ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedDive& dive, const Camera& camera,
+                                  CalibrateSummary* summary) {
+  const Workspace& workspace = dive.workspace();
+  const SparseModel& model = dive.model();
+  ObservationSet observations;
+  if (!options.targets.empty()) {
+    const std::vector<Target> targets = ReadTargets(options.targets);
+    if (!options.targets_workspace.empty()) {
+      const Workspace targets_workspace = FindWorkspace(options.targets_workspace);
+      const SparseModel targets_model = ReadSparseModel(targets_workspace.sparse_dir);
+      const Mesh targets_mesh = ReadMesh(options.targets_mesh);
+      CheckSameImageSize(SingleImageSize(targets_model, targets_workspace.sparse_dir), camera, targets_workspace);
+      const RaycastScene targets_scene(targets_mesh);
+      observations.known_colors = KnownColorObservations(options, targets, targets_workspace, targets_model, targets_scene);
+      summary->num_target_images = targets_model.images.size();
+    } else {
+      observations.known_colors = KnownColorObservations(options, targets, workspace, model, dive.scene());
+      summary->num_target_images = model.images.size();
+    }
+  }
+  if (!options.chessboard.empty()) {
+    const std::vector<KnownColorObservation> board = ChessboardObservations(options, camera, summary);
+    observations.known_colors.insert(observations.known_colors.end(), board.begin(), board.end());
+  }
+  if (options.correspondences) {
+    SurveyCorrespondenceOptions extraction = options.correspondence_extraction;
+    extraction.superpixels.shading = options.calibration.grid.shading;
+    extraction.views.shading = options.calibration.grid.shading;
+    extraction.input_encoding = options.input_encoding;
+    extraction.num_threads = options.num_threads;
+    const SurveyCorrespondences survey = ExtractSurveyCorrespondences(workspace.images_dir, model, dive.scene(), extraction);
+    observations.correspondences = survey.correspondences;
+    summary->num_superpixel_samples = survey.num_samples;
+    if (observations.correspondences.empty()) {
+      throw std::runtime_error(workspace.images_dir.string() +
+                               ": no correspondences found (do the images overlap, and does the mesh cover them?)");
+    }
+  }
+  if (!options.pure_water.empty()) observations.pure_water = PureWaterObservations(options, camera, summary);
+  return observations;
+}
+
+// The LUT of the reference water lit as shading assumes the lights (the rig, or a point light at the one
+// position), without geometry: it sets the calibration weights.
+FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, const FrustumLutGrid& grid) {
+  LightRig reference_rig = options.calibration.grid.shading.rig;
+  if (reference_rig.lights.empty()) {
+    reference_rig = PointLightAtCamera();
+    reference_rig.lights[0].position_in_cam = options.calibration.grid.shading.light_in_cam;
+  }
+  const Mesh no_geometry;
+  const Simulator reference_simulator(no_geometry, reference_rig, ReferenceWater(options),
+                                      SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
+  return reference_simulator.TrueLut(camera, grid);
+}
+
+}  // namespace
+
+void CalibrateOptions::Check() const {
+  if (workspace.empty() || mesh.empty()) throw OptionError("{workspace} and {mesh} are required");
+  if (targets.empty() && chessboard.empty() && !correspondences) {
+    throw OptionError(
+        "give {targets} or {chessboard} (known colours), {correspondences} (self-calibration), or both");
+  }
+  if (chessboard.empty() != chessboard_images.empty()) {
+    throw OptionError("{chessboard} and {chessboard_images} go together");
+  }
+  if (targets_workspace.empty() != targets_mesh.empty()) {
+    throw OptionError("{targets_workspace} and {targets_mesh} go together");
+  }
+  if (!targets_workspace.empty() && targets.empty()) throw OptionError("{targets_workspace} needs {targets}");
+  if (targets.empty() && chessboard.empty() && !(calibration.grey_world_albedo.minCoeff() > 0.0)) {
+    throw OptionError(
+        "without {targets}, correspondences fix the LUT only up to a factor per channel: give {targets} with one "
+        "known colour, or {calibration.grey_world_albedo} (the mean albedo of the surveyed surfaces) to set the scale");
+  }
+  if (correspondences) correspondence_extraction.Check();
+  if (!WaterPreset(reference_water)) {
+    throw OptionError(std::string("{reference_water} must be ") + WaterPresetNames());
+  }
+  if (pure_water_stride < 1) throw OptionError("{pure_water_stride} must be at least 1");
+  sampling.Check();
+}
+
+CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
+  options.Check();
+  return CalibrateWorkspace(options, LoadedDive(options.workspace, options.mesh));
+}
+
+CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedDive& dive) {
+  given.Check();
+  // The rig file, read once: its lights are the shading from here on.
+  CalibrateOptions options = given;
+  if (!options.shading_rig.empty()) options.calibration.grid.shading.rig = ReadLightRig(options.shading_rig);
+  const Camera& camera = SingleImageSize(dive.model(), dive.workspace().sparse_dir);
+
+  CalibrationOptions calibration = options.calibration;
+  calibration.grid.image_width = static_cast<int>(camera.width);
+  calibration.grid.image_height = static_cast<int>(camera.height);
+  calibration.levels = DefaultLevels(calibration.grid.nx, calibration.grid.ny);
+  calibration.num_threads = options.num_threads;
+  calibration.Check();
+
+  CalibrateSummary summary;
+  summary.num_images = dive.model().images.size();
+  const ObservationSet observations = GatherObservations(options, dive, camera, &summary);
+  LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour, "
+            << observations.correspondences.size() << " correspondence and " << observations.pure_water.size()
+            << " pure-water observations";
+  const CalibrationResult result = Calibrate(observations, ReferenceLut(options, camera, calibration.grid), calibration);
+
+  summary.lut = options.output.empty() ? dive.workspace().LutPath() : options.output;
+  summary.calibration = result.summary;
+  WriteLut(result.lut, summary.lut);
+  WriteLut(result.coverage, CoverageLutPath(summary.lut));
+  WriteLutSlabImages(result.lut, summary.lut.parent_path() / "slabs");
+  WriteCalibrationSummary(summary, result);
+  return summary;
+}
+
+void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
+  const CalibrationSummary& c = summary.calibration;
+  out << std::fixed << std::setprecision(4) << "calibrate: " << summary.num_images << " images, "
+            << c.num_known_color << " known-colour, " << c.num_correspondences << " correspondence and "
+            << c.num_pure_water << " pure-water observations ("
+            << summary.num_pure_water_images << " pure-water images, " << summary.num_pure_water_skipped
+            << " skipped as showing a surface); "
+            << "residual RMS " << c.known_color_rms.x() << " " << c.known_color_rms.y() << " " << c.known_color_rms.z()
+            << "; correspondence albedo RMS " << c.correspondence_albedo_rms.x() << " " << c.correspondence_albedo_rms.y()
+            << " " << c.correspondence_albedo_rms.z() << "; " << std::setprecision(0) << 100 * c.covered_fraction << " % of nodes covered; "
+            << std::setprecision(1) << c.seconds << " s\n"
+            << "  LUT:      " << summary.lut.string() << "\n"
+            << "  coverage: " << CoverageLutPath(summary.lut).string() << "\n";
+}
+
+}  // namespace lutex

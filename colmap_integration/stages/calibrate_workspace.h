@@ -1,0 +1,87 @@
+#pragma once
+
+// `lutex calibrate`: fits the LUT of a camera-and-lights rig from
+//   - targets of known colour (targets file, see lib/calibration/targets.h) seen in the workspace's images
+//     or in separate calibration images (their own COLMAP model and mesh of the targets);
+//   - a black-and-white chessboard or a ChArUco board with coloured patches in a folder of images of the
+//     same camera (no model or mesh needed);
+//   - correspondences between the workspace's own survey images (survey_correspondences.h), with or
+//     without targets; without, the absolute scale comes from a grey-world albedo the user gives;
+//   - optionally pure-water images (beta upper bounds).
+//
+// Output: the LUT (lut_file.h), `coverage.lut` beside it (alpha = per-node data coverage in [0, 1]),
+// `calibration_summary.json` (residuals, iterations, coverage, time) and `slabs/` pictures.
+
+#include <cstddef>
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+#include "colmap_integration/stages/loaded_dive.h"
+#include "lib/calibration/survey_correspondences.h"
+#include "lib/calibration/calibrator.h"
+#include "lib/calibration/known_color_sampling.h"
+#include "lib/calibration/pure_water_sampling.h"
+#include "lib/image/image_io.h"
+
+namespace lutex {
+
+struct CalibrateOptions {
+  std::filesystem::path workspace;   // images with their COLMAP model (the survey, or calibration images)
+  std::filesystem::path mesh;        // their scene's geometry, in the model's world frame
+  std::filesystem::path targets;     // targets file (optional with correspondences)
+  // Optional: targets seen in separate calibration images of the same camera, with their own model and
+  // mesh; empty: the targets are looked for in `workspace`.
+  std::filesystem::path targets_workspace;
+  std::filesystem::path targets_mesh;
+  // A board of known albedo in the images of `chessboard_images` (a folder; taken with the workspace's
+  // camera), found by OpenCV and posed by solvePnP: a black-and-white chessboard
+  // (lib/calibration/chessboard_target.h) or a ChArUco board with coloured patches (charuco_target.h),
+  // by the file's top-level key "chessboard" or "charuco".
+  std::filesystem::path chessboard;
+  std::filesystem::path chessboard_images;
+  // Correspondence constraints from the workspace's images.
+  bool correspondences = false;
+  SurveyCorrespondenceOptions correspondence_extraction;
+  std::filesystem::path pure_water;  // optional: a workspace of pure-water images of the same camera
+  std::filesystem::path output;      // the LUT file; empty: W/lutex/calibration/lut.lut
+  ImageEncoding input_encoding = ImageEncoding::kSrgb8;
+  // The water of the reference LUT that sets the weights: "clear" or "coastal" (ignored in air).
+  std::string reference_water = "clear";
+  // A light-rig file ("lights" as in a scene description, lib/model/light_rig_json.h); when given, its
+  // lights replace calibration.grid.shading.rig.
+  std::filesystem::path shading_rig;
+  KnownColorSamplingOptions sampling;
+  int pure_water_stride = 8;
+  PureWaterScreeningOptions pure_water_screening;
+  // The fit itself, as the library takes it: grid.nx/ny/nz, z_near, z_far (the LUT grid; its image size
+  // is set from the camera, its levels from nx and ny), grid.shading (how shading treats the lights: the
+  // camera centre, a single flash's position or the rig; recorded in the LUT, and the reference LUT is
+  // lit the same way), in_air (beta fixed at 0, reference LUT without water), grey_world_albedo (without
+  // targets: the mean albedo per channel of the surveyed surfaces, setting the scale), weights.
+  CalibrationOptions calibration;
+  int num_threads = 0;
+
+  void Check() const;
+};
+
+struct CalibrateSummary {
+  std::filesystem::path lut;
+  std::size_t num_images = 0;
+  std::size_t num_target_images = 0;
+  std::size_t num_chessboard_images = 0;  // in which the chessboard was found
+  std::size_t num_superpixel_samples = 0;
+  std::size_t num_pure_water_images = 0;
+  std::size_t num_pure_water_skipped = 0;  // images that seemed to show a surface
+  CalibrationSummary calibration;
+};
+
+CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options);
+// The same on a dive loaded before (`lutex run` loads it once for every stage): `dive` holds the workspace
+// and mesh of `options`.
+CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options, const LoadedDive& dive);
+
+// The lines the stage prints when done.
+void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary);
+
+}  // namespace lutex

@@ -1,0 +1,15 @@
+#include "colmap_integration/stages/loaded_dive.h"
+
+#include "colmap_integration/io/sparse_model_io.h"
+#include "lib/geometry/mesh_io.h"
+
+namespace lutex {
+
+LoadedDive::LoadedDive(const std::filesystem::path& workspace_root, const std::filesystem::path& mesh_path)
+    : workspace_(FindWorkspace(workspace_root)),
+      model_(ReadSparseModel(workspace_.sparse_dir)),
+      mesh_path_(mesh_path),
+      mesh_(ReadMesh(mesh_path)),
+      scene_(std::make_unique<RaycastScene>(mesh_)) {}
+
+}  // namespace lutex

@@ -1,0 +1,157 @@
+#include "colmap_integration/stages/restore_workspace.h"
+
+#include <iomanip>
+#include <chrono>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "colmap_integration/io/confidence_map_io.h"
+#include "lib/raycast/images_by_camera.h"
+#include "colmap_integration/io/sparse_model_io.h"
+#include "colmap_integration/io/workspace.h"
+#include "lib/geometry/mesh_io.h"
+#include "lib/lut/lut_file.h"
+#include "lib/raycast/raycast_scene.h"
+#include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
+#include "lib/util/option_error.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The coverage LUT to use, or empty; an explicit one must exist and match the LUT's grid.
+fs::path CoveragePath(const RestoreOptions& options) {
+  if (options.ignore_coverage) return {};
+  if (!options.coverage.empty()) return options.coverage;
+  const fs::path beside = CoverageLutPath(options.lut);
+  return fs::exists(beside) ? beside : fs::path();
+}
+
+void CheckSameGrid(const FrustumLut& lut, const fs::path& lut_path, const FrustumLut& coverage,
+                   const fs::path& coverage_path) {
+  if (!(lut.grid() == coverage.grid())) {
+    throw std::runtime_error(coverage_path.string() + ": the coverage is for another LUT grid than " +
+                             lut_path.string());
+  }
+}
+
+}  // namespace
+
+fs::path RestoredImagePath(const fs::path& output, const std::string& name, ImageEncoding encoding) {
+  fs::path path = output / name;
+  const std::string extension = path.extension().string();
+  if (encoding == ImageEncoding::kFloat) {
+    path.replace_extension(".exr");
+  } else if (encoding == ImageEncoding::kLinear16 && extension != ".png" && extension != ".tif" && extension != ".tiff") {
+    path.replace_extension(".png");
+  }
+  return path;
+}
+
+fs::path FindRestoredImage(const fs::path& folder, const std::string& name) {
+  for (const ImageEncoding encoding : {ImageEncoding::kSrgb8, ImageEncoding::kLinear16, ImageEncoding::kFloat}) {
+    const fs::path path = RestoredImagePath(folder, name, encoding);
+    if (fs::exists(path)) return path;
+  }
+  return {};
+}
+
+void RestoreOptions::Check() const {
+  if (workspace.empty()) throw OptionError("{workspace} is required");
+  if (mesh.empty()) throw OptionError("{mesh} is required");
+  if (lut.empty()) throw OptionError("{lut} is required");
+  if (output_encoding != "same") ParseImageEncoding(output_encoding);
+  restoration.Check();
+}
+
+RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
+  options.Check();
+  return RestoreWorkspace(options, LoadedDive(options.workspace, options.mesh));
+}
+
+RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive& dive) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  const Workspace& workspace = dive.workspace();
+  const SparseModel& model = dive.model();
+  const FrustumLut lut = ReadLut(options.lut);
+  const fs::path coverage_path = CoveragePath(options);
+  std::optional<FrustumLut> coverage;
+  if (!coverage_path.empty()) {
+    coverage = ReadLut(coverage_path);
+    CheckSameGrid(lut, options.lut, *coverage, coverage_path);
+  }
+  for (const auto& [id, camera] : model.cameras) {
+    if (static_cast<int>(camera.width) != lut.grid().image_width ||
+        static_cast<int>(camera.height) != lut.grid().image_height) {
+      throw std::runtime_error(options.lut.string() + ": the LUT is for " + std::to_string(lut.grid().image_width) + "x" +
+                               std::to_string(lut.grid().image_height) + " images but camera " + std::to_string(id) +
+                               " is " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    }
+  }
+  for (const auto& [id, image] : model.images) {
+    if (!fs::exists(workspace.images_dir / image.name)) {
+      throw std::runtime_error((workspace.images_dir / image.name).string() + ": no such image (image " +
+                               std::to_string(id) + " of the model)");
+    }
+  }
+  const RaycastScene& scene = dive.scene();
+  const ImageEncoding output_encoding =
+      options.output_encoding == "same" ? options.input_encoding : ParseImageEncoding(options.output_encoding);
+
+  RestoreSummary summary;
+  summary.coverage = coverage_path;
+  summary.output = options.output.empty() ? workspace.RestoredDir() : options.output;
+  summary.confidence_output = ConfidenceDirOf(summary.output);
+  const auto outputs_of = [&](const Image& image) {
+    return std::vector<fs::path>{RestoredImagePath(summary.output, image.name, output_encoding),
+                                 ConfidenceMapPath(summary.confidence_output, image.name)};
+  };
+  const SparseModel todo = options.skip_done ? WithoutDoneImages(model, outputs_of) : model;
+  summary.num_skipped = model.images.size() - todo.images.size();
+  double confidence_sum = 0.0;
+  std::size_t surface_pixels = 0;
+  std::mutex summary_mutex;
+  // The outputs of the image each worker is on, reused from image to image.
+  std::vector<RestoredImage> worker_outputs(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
+  ForEachImageWithMaps(todo, scene, options.num_threads, "restore",
+                       [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int worker) {
+    RestoredImage& restored = worker_outputs[static_cast<std::size_t>(worker)];
+    const fs::path input = workspace.images_dir / image.name;
+    const cv::Mat observed = ReadLinearImage(input, options.input_encoding);
+    if (observed.cols != rays.width() || observed.rows != rays.height()) {
+      throw std::runtime_error(input.string() + ": the image is " + std::to_string(observed.cols) + "x" +
+                               std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
+                               "x" + std::to_string(rays.height()));
+    }
+    RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr, &restored);
+    const std::vector<fs::path> outputs = outputs_of(image);
+    WriteLinearImage(restored.albedo, outputs[0], output_encoding);
+    WriteConfidenceMap(restored.confidence, outputs[1]);
+    const int surfaces = cv::countNonZero(maps.depth == maps.depth);
+    const cv::Scalar total = cv::sum(restored.confidence);
+    std::lock_guard<std::mutex> lock(summary_mutex);
+    confidence_sum += total[0] + total[1] + total[2];
+    surface_pixels += static_cast<std::size_t>(surfaces);
+    ++summary.num_images;
+  });
+  summary.mean_confidence = surface_pixels ? confidence_sum / (3.0 * static_cast<double>(surface_pixels)) : 0.0;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+void PrintRestoreSummary(std::ostream& out, const RestoreSummary& summary) {
+  out << "restore: " << summary.num_images << " images in " << std::fixed << std::setprecision(1)
+            << summary.seconds << " s; mean confidence " << std::setprecision(2) << summary.mean_confidence << "\n"
+            << "  restored images:  " << summary.output.string() << "\n"
+            << "  confidence maps:  " << summary.confidence_output.string() << "\n"
+            << "  LUT coverage:     " << (summary.coverage.empty() ? std::string("not used") : summary.coverage.string())
+            << "\n";
+}
+
+}  // namespace lutex

@@ -1,0 +1,268 @@
+#include "colmap_integration/stages/run_workspace.h"
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "colmap_integration/io/workspace.h"
+#include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/report_workspace.h"
+#include "colmap_integration/stages/stage_record.h"
+#include "lib/util/atomic_output.h"
+#include "lib/util/logging.h"
+#include "lib/util/option_error.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Every regular file under `folder`, sorted, without the temporaries of writers (dot files).
+void AddFolder(StageRecord* record, const fs::path& folder) {
+  if (!fs::is_directory(folder)) throw std::runtime_error(folder.string() + ": no such folder");
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    if (entry.is_regular_file() && entry.path().filename().string().front() != '.') files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files) record->AddFile(file);
+}
+
+// The sparse model's files (one level: cameras, images, points3D, in any format).
+void AddModel(StageRecord* record, const Workspace& workspace) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(workspace.sparse_dir)) {
+    if (entry.is_regular_file()) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files) record->AddFile(file);
+}
+
+// A second workspace a stage reads (calibration images, pure water): its model and images.
+void AddOtherWorkspace(StageRecord* record, const fs::path& root) {
+  const Workspace other = FindWorkspace(root);
+  AddModel(record, other);
+  AddFolder(record, other.images_dir);
+}
+
+void AddSettings(StageRecord* record, const RunOptions& options) {
+  const auto found = options.stage_settings.find(record->stage());
+  if (found == options.stage_settings.end()) return;
+  for (const auto& [name, value] : found->second) record->AddSetting(name, value);
+}
+
+class StageRunner {
+ public:
+  StageRunner(fs::path records_dir, bool force) : records_dir_(std::move(records_dir)), force_(force) {}
+
+  // Runs `work(resume)` unless `record` is up to date; `work` returns the stage's summary lines.
+  // `output_folders` are cleared of a killed run's temporaries first.
+  RunStageSummary Run(const StageRecord& record, const std::vector<fs::path>& output_folders,
+                      const std::function<std::string(bool resume)>& work) {
+    const fs::path record_path = StageRecordPath(records_dir_, record.stage());
+    const std::string fingerprint = record.Fingerprint();
+    const std::optional<StoredStageRecord> previous = ReadStageRecord(record_path);
+    RunStageSummary stage;
+    stage.stage = record.stage();
+    if (!force_ && previous && previous->fingerprint == fingerprint && previous->state == "done" &&
+        record.OutputsExist()) {
+      LogInfo() << record.stage() << ": up to date (" << record_path.string() << ")";
+      stage.status = "up to date";
+      stage.seconds = previous->seconds;
+      stage.summary = previous->summary;
+      return stage;
+    }
+    const bool resume = !force_ && previous && previous->fingerprint == fingerprint;
+    for (const fs::path& folder : output_folders) {
+      if (const std::size_t removed = RemoveStaleTemporaries(folder)) {
+        LogInfo() << record.stage() << ": removed " << removed << " unfinished file(s) of an interrupted run in "
+                  << folder.string();
+      }
+    }
+    LogInfo() << record.stage() << ": " << (resume ? "resuming an interrupted run" : "running");
+    WriteStageRecord(record_path, record, "started");
+    const auto start = std::chrono::steady_clock::now();
+    stage.summary = work(resume);
+    stage.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stage.status = resume ? "resumed" : "done";
+    WriteStageRecord(record_path, record, "done", stage.seconds, stage.summary);
+    return stage;
+  }
+
+ private:
+  fs::path records_dir_;
+  bool force_;
+};
+
+template <typename Summary, typename Print>
+std::string SummaryText(const Summary& summary, Print print) {
+  std::ostringstream text;
+  print(text, summary);
+  return text.str();
+}
+
+// One `lutex run`: its options, the workspace, the stage runner and the summary so far; one method per stage.
+class DiveRun {
+ public:
+  explicit DiveRun(const RunOptions& options)
+      : options_(options), workspace_(FindWorkspace(options.workspace)),
+        runner_(workspace_.RunRecordsDir(), options.force) {}
+
+  // With depth_maps only: COLMAP depth and normal maps in W/lutex/raycast.
+  void Raycast() {
+    RaycastOptions raycast = options_.raycast;
+    raycast.workspace = options_.workspace;
+    raycast.mesh = options_.mesh;
+    raycast.output = workspace_.RaycastDir();
+    raycast.num_threads = options_.num_threads;
+    StageRecord record = BaseRecord("raycast");
+    record.AddOutput(raycast.output);
+    summary_.stages.push_back(runner_.Run(record, {raycast.output}, [&](bool resume) {
+      raycast.skip_done = resume;
+      return SummaryText(RaycastWorkspace(raycast, Dive()), PrintRaycastSummary);
+    }));
+  }
+
+  // The LUT: calibrated, or the one given.
+  void Calibrate() {
+    summary_.lut = options_.lut.empty() ? workspace_.LutPath() : options_.lut;
+    if (options_.lut.empty()) {
+      CalibrateOptions calibrate = options_.calibrate;
+      calibrate.workspace = options_.workspace;
+      calibrate.mesh = options_.mesh;
+      calibrate.output = summary_.lut;
+      calibrate.input_encoding = options_.input_encoding;
+      calibrate.num_threads = options_.num_threads;
+      StageRecord record = BaseRecord("calibrate");
+      record.AddSetting("input-encoding", ImageEncodingName(options_.input_encoding));
+      AddFolder(&record, workspace_.images_dir);
+      if (!calibrate.targets.empty()) record.AddFile(calibrate.targets);
+      if (!calibrate.targets_workspace.empty()) AddOtherWorkspace(&record, calibrate.targets_workspace);
+      if (!calibrate.targets_mesh.empty()) record.AddFile(calibrate.targets_mesh);
+      if (!calibrate.chessboard.empty()) record.AddFile(calibrate.chessboard);
+      if (!calibrate.shading_rig.empty()) record.AddFile(calibrate.shading_rig);
+      if (!calibrate.chessboard_images.empty()) AddFolder(&record, calibrate.chessboard_images);
+      if (!calibrate.pure_water.empty()) AddOtherWorkspace(&record, calibrate.pure_water);
+      record.AddOutput(summary_.lut);
+      record.AddOutput(CoverageLutPath(summary_.lut));
+      record.AddOutput(CalibrationSummaryPath(summary_.lut));
+      summary_.stages.push_back(runner_.Run(record, {summary_.lut.parent_path()}, [&](bool) {
+        return SummaryText(CalibrateWorkspace(calibrate, Dive()), PrintCalibrateSummary);
+      }));
+    } else {
+      summary_.stages.push_back({"calibrate", "not needed", 0.0, "calibrate: LUT given: " + options_.lut.string() + "\n"});
+    }
+  }
+
+  // Every image to albedo, with confidence maps.
+  void Restore() {
+    restore_ = options_.restore;
+    RestoreOptions& restore = restore_;
+    restore.workspace = options_.workspace;
+    restore.mesh = options_.mesh;
+    restore.lut = summary_.lut;
+    restore.output = workspace_.RestoredDir();
+    restore.input_encoding = options_.input_encoding;
+    restore.num_threads = options_.num_threads;
+    summary_.restored = restore.output;
+    summary_.confidence = ConfidenceDirOf(summary_.restored);
+    StageRecord record = BaseRecord("restore");
+    record.AddSetting("input-encoding", ImageEncodingName(options_.input_encoding));
+    AddFolder(&record, workspace_.images_dir);
+    record.AddFileContents(summary_.lut);
+    const fs::path coverage = CoverageLutPath(summary_.lut);
+    if (!restore.ignore_coverage && fs::exists(coverage)) record.AddFileContents(coverage);
+    record.AddOutput(summary_.restored);
+    record.AddOutput(summary_.confidence);
+    summary_.stages.push_back(runner_.Run(record, {summary_.restored, summary_.confidence}, [&](bool resume) {
+      restore.skip_done = resume;
+      return SummaryText(RestoreWorkspace(restore, Dive()), PrintRestoreSummary);
+    }));
+  }
+
+  // The albedo texture of the mesh, from the restored images.
+  void Texture() {
+    TextureOptions texture = options_.texture;
+    texture.workspace = options_.workspace;
+    texture.mesh = options_.mesh;
+    texture.images = summary_.restored;
+    texture.confidence = summary_.confidence;
+    texture.image_encoding =
+        restore_.output_encoding == "same" ? options_.input_encoding : ParseImageEncoding(restore_.output_encoding);
+    texture.output = workspace_.ModelPath();
+    texture.baking.num_threads = options_.num_threads;
+    summary_.model = texture.output;
+    StageRecord record = BaseRecord("texture");
+    record.AddSetting("image-encoding", ImageEncodingName(texture.image_encoding));
+    AddFolder(&record, summary_.restored);
+    if (!texture.ignore_confidence) AddFolder(&record, summary_.confidence);
+    record.AddOutput(texture.output);
+    summary_.stages.push_back(runner_.Run(record, {texture.output.parent_path()}, [&](bool) {
+      return SummaryText(TextureWorkspace(texture, Dive()), PrintTextureSummary);
+    }));
+  }
+
+  void Report() {
+    ReportOptions report;
+    report.workspace = options_.workspace;
+    report.lut = summary_.lut;
+    summary_.report = WriteReport(report).index;
+  }
+
+  RunSummary& summary() { return summary_; }
+
+ private:
+  // The record every stage starts from: its settings, the model and the mesh.
+  StageRecord BaseRecord(const std::string& stage) const {
+    StageRecord record(stage);
+    AddSettings(&record, options_);
+    AddModel(&record, workspace_);
+    record.AddFile(options_.mesh);
+    return record;
+  }
+
+  // The model, mesh and ray-casting scene, loaded by the first stage that runs and shared by the others.
+  const LoadedDive& Dive() {
+    if (!loaded_) loaded_ = std::make_unique<LoadedDive>(options_.workspace, options_.mesh);
+    return *loaded_;
+  }
+
+  const RunOptions& options_;
+  const Workspace workspace_;
+  StageRunner runner_;
+  RunSummary summary_;
+  std::unique_ptr<LoadedDive> loaded_;
+  RestoreOptions restore_;  // as the restore stage ran, for the texture stage
+};
+
+}  // namespace
+
+void RunOptions::Check() const {
+  if (workspace.empty()) throw OptionError("{workspace} is required");
+  if (mesh.empty()) throw OptionError("{mesh} is required");
+  if (lut.empty() && calibrate.targets.empty() && calibrate.chessboard.empty() && !calibrate.correspondences) {
+    throw OptionError(
+        "nothing to calibrate from: give {targets} or {chessboard} (known colours), {correspondences} (with "
+        "{grey_world_albedo} when there are no targets), or a LUT calibrated before with {lut}");
+  }
+}
+
+RunSummary RunWorkspace(const RunOptions& options) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  DiveRun run(options);
+  if (!fs::exists(options.mesh)) throw std::runtime_error(options.mesh.string() + ": no such mesh file");
+  if (options.raycast_maps) run.Raycast();
+  run.Calibrate();
+  run.Restore();
+  run.Texture();
+  run.summary().seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.report) run.Report();
+  return run.summary();
+}
+
+}  // namespace lutex

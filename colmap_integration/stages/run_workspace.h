@@ -1,0 +1,77 @@
+#pragma once
+
+// `lutex run`: the whole pipeline on one COLMAP workspace, everything under W/lutex/:
+//
+//   raycast     (only with raycast_maps) raycast/       depth and normal maps in COLMAP's format
+//   calibrate   (unless a LUT is given)  calibration/   lut.lut, coverage.lut, calibration_summary.json, slabs/
+//   restore                              restored/, restored_confidence/
+//   texture                              model.glb
+//   report                               report/index.html (lutex report)
+//
+// Resumable: each stage keeps a record in W/lutex/run/STAGE.json (stage_record.h) of what it consumed
+// (the files it reads, by size and modification time or, for the LUT, by content; the settings that shape
+// its output). A stage whose record says done with the same fingerprint is skipped; a stage that was cut
+// off (killed, crashed) runs again, and restore and raycast skip the images they had finished. Every file
+// is written under a temporary name and renamed when complete (leftover temporaries of a killed run are
+// removed), so a run killed at any point and started again ends with the same outputs as one that was
+// never interrupted.
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "colmap_integration/stages/calibrate_workspace.h"
+#include "colmap_integration/stages/raycast_workspace.h"
+#include "colmap_integration/stages/restore_workspace.h"
+#include "colmap_integration/stages/texture_workspace.h"
+
+namespace lutex {
+
+struct RunOptions {
+  std::filesystem::path workspace;
+  std::filesystem::path mesh;
+  ImageEncoding input_encoding = ImageEncoding::kSrgb8;
+  // A LUT calibrated before (e.g. from the rig's calibration dive) instead of the calibrate stage; its
+  // coverage.lut beside it is used when present.
+  std::filesystem::path lut;
+  // Also write per-image depth and normal maps (raycast stage). Off by default: the other stages ray-cast
+  // on the fly, and the maps of a dive are large (16 bytes per pixel: 190 MB per 12 MP image).
+  bool raycast_maps = false;
+  // Stage options; the workspace, mesh, encodings, inputs and outputs of each are set by the run.
+  RaycastOptions raycast;
+  CalibrateOptions calibrate;
+  RestoreOptions restore;
+  TextureOptions texture;
+  // Per stage ("raycast", "calibrate", "restore", "texture"), the settings that shape its output, by
+  // option name, as the command line and config file gave them; part of the stage's fingerprint.
+  std::map<std::string, std::map<std::string, std::string>> stage_settings;
+  // Redo every stage even when its record says it is up to date.
+  bool force = false;
+  // Write the HTML report at the end.
+  bool report = true;
+  int num_threads = 0;
+
+  void Check() const;
+};
+
+struct RunStageSummary {
+  std::string stage;
+  std::string status;  // "done", "resumed", "up to date" or "not needed"
+  double seconds = 0.0;  // of the run that produced the outputs (also when up to date)
+  std::string summary;   // the stage command's summary lines
+};
+
+struct RunSummary {
+  std::vector<RunStageSummary> stages;
+  std::filesystem::path lut;
+  std::filesystem::path restored;
+  std::filesystem::path confidence;
+  std::filesystem::path model;
+  std::filesystem::path report;  // empty without report
+  double seconds = 0.0;
+};
+
+RunSummary RunWorkspace(const RunOptions& options);
+
+}  // namespace lutex

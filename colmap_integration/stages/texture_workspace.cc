@@ -1,0 +1,128 @@
+#include "colmap_integration/stages/texture_workspace.h"
+
+#include <iomanip>
+#include <chrono>
+#include <stdexcept>
+
+#include "colmap_integration/io/confidence_map_io.h"
+#include "colmap_integration/stages/restore_workspace.h"
+#include "colmap_integration/io/sparse_model_io.h"
+#include "colmap_integration/io/workspace.h"
+#include "lib/geometry/mesh_io.h"
+#include "lib/util/logging.h"
+#include "lib/util/option_error.h"
+#include "texturing/textured_mesh_io.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+void TextureOptions::Check() const {
+  if (workspace.empty()) throw OptionError("{workspace} is required");
+  if (mesh.empty()) throw OptionError("{mesh} is required");
+  if (!output.empty()) CheckTexturedMeshPath(output);
+  if (page_encoding == ImageEncoding::kFloat) throw std::invalid_argument("pages are srgb8 or linear16");
+  baking.Check();
+}
+
+TextureSummary TextureWorkspace(const TextureOptions& options) {
+  options.Check();
+  return TextureWorkspace(options, LoadedDive(options.workspace, options.mesh));
+}
+
+TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive& dive) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  const Workspace& workspace = dive.workspace();
+  const SparseModel& model = dive.model();
+  TextureSummary summary;
+  summary.images = options.images;
+  if (summary.images.empty()) {
+    summary.images = workspace.RestoredDir();
+    if (!fs::is_directory(summary.images)) {
+      summary.images = workspace.images_dir;
+      LogWarning() << "texture: " << workspace.RestoredDir().string()
+                   << " does not exist; texturing the unrestored images of " << summary.images.string()
+                   << " (run lutex restore first for albedo)";
+    }
+  }
+  if (!fs::is_directory(summary.images)) throw std::runtime_error(summary.images.string() + ": no such folder");
+  if (!options.ignore_confidence) {
+    summary.confidence = options.confidence;
+    if (summary.confidence.empty()) {
+      const fs::path beside = ConfidenceDirOf(summary.images);
+      if (fs::is_directory(beside)) summary.confidence = beside;
+    } else if (!fs::is_directory(summary.confidence)) {
+      throw std::runtime_error(summary.confidence.string() + ": no such folder");
+    }
+  }
+  std::vector<TextureView> views;
+  std::vector<fs::path> image_paths, confidence_paths;
+  for (const auto& [id, image] : model.images) {
+    const fs::path path = FindRestoredImage(summary.images, image.name);
+    if (path.empty()) {
+      throw std::runtime_error((summary.images / image.name).string() + ": no such image (image " +
+                               std::to_string(id) + " of the model)");
+    }
+    image_paths.push_back(path);
+    if (!summary.confidence.empty()) {
+      const fs::path confidence = ConfidenceMapPath(summary.confidence, image.name);
+      if (!fs::exists(confidence)) throw std::runtime_error(confidence.string() + ": no such confidence map");
+      confidence_paths.push_back(confidence);
+    }
+    views.push_back({image.name, model.cameras.at(image.camera_id), image.cam_from_world});
+  }
+  const fs::path output = options.output.empty() ? workspace.ModelPath() : options.output;
+
+  ViewImageSource source;
+  source.linear_rgb = [&](std::size_t v) {
+    const cv::Mat image = ReadLinearImage(image_paths[v], options.image_encoding);
+    if (image.cols != static_cast<int>(views[v].camera.width) || image.rows != static_cast<int>(views[v].camera.height)) {
+      throw std::runtime_error(image_paths[v].string() + ": the image is " + std::to_string(image.cols) + "x" +
+                               std::to_string(image.rows) + " but its camera is " +
+                               std::to_string(views[v].camera.width) + "x" + std::to_string(views[v].camera.height));
+    }
+    return image;
+  };
+  if (!confidence_paths.empty()) {
+    source.confidence = [&](std::size_t v) { return ReadConfidenceMap(confidence_paths[v], views[v].camera); };
+  }
+  TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, options.baking);
+  summary.baking = result.summary;
+  summary.written = WriteTexturedMesh(result.textured, output, options.page_encoding);
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+void PrintTextureSummary(std::ostream& out, const TextureSummary& summary) {
+  const TextureBakingSummary& baking = summary.baking;
+  out << std::fixed << std::setprecision(1) << "texture: " << baking.num_textured_faces << " of "
+            << baking.num_faces << " faces textured from " << baking.num_views << " images in " << summary.seconds
+            << " s\n"
+            << "  charts: " << baking.num_charts << " on " << baking.num_pages << " page(s), "
+            << double(baking.page_texels) / 1e6 << " Mtexels (" << std::setprecision(0)
+            << 100.0 * double(baking.num_texels) / double(std::max<std::size_t>(baking.page_texels, 1))
+            << " % on the surface)\n"
+            << std::setprecision(2) << "  view selection: energy " << baking.selection.data_cost << " data + "
+            << baking.selection.smoothness_cost << " seams (best view per face: "
+            << baking.selection.best_view_data_cost << " + " << baking.selection.best_view_smoothness_cost << "), "
+            << baking.selection.iterations << " sweeps\n"
+            << "  fusion: " << baking.fusion.mean_samples_per_texel << " views per texel, "
+            << baking.fusion.rejected_samples << " outlier samples rejected, " << baking.fusion.texels_without_samples
+            << " texels seen by no view, " << baking.fusion.num_passes << " pass(es)\n"
+            << std::setprecision(2) << "  seams: " << baking.seams.num_seam_edges << " chart-border edges; colour step "
+            << 100.0 * baking.seams.seam_step << " % of full scale across them, " << 100.0 * baking.seams.interior_step
+            << " % inside charts\n"
+            << std::setprecision(1) << "  time: visibility " << baking.seconds_visibility << " s, view selection "
+            << baking.seconds_selection << " s, charts and atlas " << baking.seconds_layout << " s, colours "
+            << baking.seconds_fusion << " s, writing "
+            << summary.seconds - baking.seconds_visibility - baking.seconds_selection - baking.seconds_layout -
+                   baking.seconds_fusion
+            << " s (incl. reading the mesh)\n"
+            << "  images: " << summary.images.string() << "\n"
+            << "  confidence: " << (summary.confidence.empty() ? std::string("not used") : summary.confidence.string())
+            << "\n";
+  for (const auto& path : summary.written) out << "  wrote " << path.string() << "\n";
+}
+
+}  // namespace lutex
