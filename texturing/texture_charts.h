@@ -45,7 +45,8 @@ struct TextureChartOptions {
 };
 
 // Charts of the faces whose `view_of_face` is not kNoView: connected components (shared edges) of one
-// view. Deterministic: charts in order of their smallest face, faces ascending.
+// view. Deterministic: charts in order of their smallest face, faces ascending; the tiles of a chart cut
+// to fit a page take its place, one after the other in their order in the view.
 std::vector<TextureChart> BuildTextureCharts(const Mesh& mesh, const FaceAdjacency& adjacency,
                                              const std::vector<TextureView>& views,
                                              const std::vector<std::uint32_t>& view_of_face,
