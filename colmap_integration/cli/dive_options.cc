@@ -1,5 +1,9 @@
 #include "colmap_integration/cli/dive_options.h"
 
+#include <algorithm>
+#include <string>
+#include <thread>
+
 namespace lutex {
 
 void AddDiveOptions(OptionParser& parser, std::filesystem::path* workspace, std::filesystem::path* mesh) {
@@ -8,7 +12,11 @@ void AddDiveOptions(OptionParser& parser, std::filesystem::path* workspace, std:
 }
 
 void AddThreadsOption(OptionParser& parser, int* num_threads) {
-  parser.AddInt("num-threads", num_threads, "Threads; 0 = all cores. Results do not depend on it.");
+  // More threads than 4 per core only cost memory (each holds an image's buffers); a negative count is a typo.
+  const int most = 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  parser.AddIntInRange("num-threads", num_threads, 0, most,
+                       "Threads; 0 = all cores, at most " + std::to_string(most) +
+                           " (4 per core). Results do not depend on it.");
 }
 
 }  // namespace lutex

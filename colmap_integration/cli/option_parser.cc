@@ -70,6 +70,18 @@ void OptionParser::AddInt(const std::string& name, int* value, const std::string
   });
 }
 
+void OptionParser::AddIntInRange(const std::string& name, int* value, int min, int max, const std::string& help) {
+  Add(name, help, std::to_string(*value), [value, name, min, max](const std::string& text) {
+    const int parsed = ParseNumber<int>(name, text, "a whole number",
+                                        [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
+    if (parsed < min || parsed > max) {
+      throw std::invalid_argument("--" + name + " must be from " + std::to_string(min) + " to " + std::to_string(max) +
+                                  ", not " + text);
+    }
+    *value = parsed;
+  });
+}
+
 void OptionParser::AddDouble(const std::string& name, double* value, const std::string& help) {
   std::ostringstream shown;
   shown << *value;

@@ -31,6 +31,8 @@ class OptionParser {
 
   void AddPath(const std::string& name, std::filesystem::path* value, const std::string& help, bool required = false);
   void AddInt(const std::string& name, int* value, const std::string& help);
+  // A whole number in [min, max]; other values are errors naming the option, the range and the value.
+  void AddIntInRange(const std::string& name, int* value, int min, int max, const std::string& help);
   void AddDouble(const std::string& name, double* value, const std::string& help);
   void AddString(const std::string& name, std::string* value, const std::string& help);
   // A flag sets *value = true; `--no-NAME` sets it to false.

@@ -187,6 +187,14 @@ TEST(LutexCli, MeshThatIsNotAMesh) {
                      {"plane.ply", "not a PLY file"});
 }
 
+// A thread count below 0 or beyond 4 per core is a typo, refused before anything is read.
+TEST(LutexCli, ThreadCountOutsideZeroToFourPerCoreIsRefused) {
+  ExpectCleanFailure(SparseFormat::kBinary, [](const fs::path&) {}, {"--num-threads must be from 0 to", "not -3"},
+                     "--num-threads -3");
+  ExpectCleanFailure(SparseFormat::kBinary, [](const fs::path&) {}, {"--num-threads must be from 0 to", "not 100000"},
+                     "--num-threads 100000");
+}
+
 TEST(LutexCli, UnknownOptionAndMissingWorkspace) {
   ExpectCleanFailure(SparseFormat::kBinary, [](const fs::path&) {}, {"unknown option --colour"}, "--colour red");
   ExpectCleanFailure(SparseFormat::kBinary, [](const fs::path& root) { fs::remove_all(root / "sparse"); },
