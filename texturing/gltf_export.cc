@@ -188,7 +188,12 @@ tinygltf::Model BuildModel(const TexturedMesh& textured) {
   tinygltf::Node node;
   node.mesh = 0;
   node.name = "lutex model";
-  node.translation = {origin.x(), origin.y(), origin.z()};
+  // glTF is +Y up: the node turns the model's up to +Y by the smallest rotation (for a +Z-up model, -90
+  // degrees about x: north, +Y, goes to glTF's -Z). Positions stay local and in the model's frame.
+  const Eigen::Quaterniond gltf_from_model = Eigen::Quaterniond::FromTwoVectors(textured.up.normalized(), Eigen::Vector3d::UnitY());
+  const Eigen::Vector3d origin_in_gltf = gltf_from_model * origin;
+  node.rotation = {gltf_from_model.x(), gltf_from_model.y(), gltf_from_model.z(), gltf_from_model.w()};
+  node.translation = {origin_in_gltf.x(), origin_in_gltf.y(), origin_in_gltf.z()};
   model.nodes.push_back(node);
   tinygltf::Scene scene;
   scene.nodes.push_back(0);

@@ -10,6 +10,9 @@
 //   would darken it twice. Base colour textures are 8-bit sRGB PNG, as the glTF spec requires.
 // - Vertex positions are stored relative to the centre of the mesh bounds, in float; the root node's
 //   translation (double precision in JSON) puts them back, so georeferenced models keep their precision.
+// - glTF is +Y up (spec 3.4): the root node's rotation turns the model's up (TexturedMesh::up) to +Y, so a
+//   viewer shows a seafloor as a floor, not a wall. glTF = rotation * model; a script wanting the model's
+//   own coordinates applies the node's inverse.
 // - Vertices are split where one mesh vertex has different texture coordinates in different charts.
 //
 // .glb: one binary file, images embedded through buffer views. .gltf: JSON with buffers and images

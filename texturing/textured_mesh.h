@@ -23,6 +23,9 @@ struct TexturedMesh {
   // Texel coordinates of each face's corners in its page: x right, y down, in texels (the centre of texel
   // (i, j) is (i + 0.5, j + 0.5)). Exporters divide by the page size and flip v as their format needs.
   std::vector<std::array<Eigen::Vector2f, 3>> face_corner_texels;
+  // The model's up direction in the mesh's frame (unit). glTF is +Y up, so the glTF writer's root node
+  // rotates this to +Y; the other formats have no convention and keep the mesh's frame.
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
 
   std::size_t NumTexturedFaces() const;
 

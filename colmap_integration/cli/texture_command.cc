@@ -43,6 +43,9 @@ int RunTextureCommand(int argc, char** argv) {
 void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
   TextureBakingOptions& baking = options->baking;
   parser.AddFlag("no-confidence", &options->ignore_confidence, "Trust every pixel equally.");
+  parser.AddString("up-axis", &options->up_axis,
+                   "The model's up for the GLB (glTF is +Y up): x, -x, y, -y, z, -z, or auto = opposite the\n"
+                   "      cameras' mean viewing direction (snapped to an axis within 10 degrees).");
   parser.AddDouble("texel-size", &baking.charts.texel_size,
                    "Texel size in scene units (e.g. 0.001 = 1 mm if the model is in metres), the same at any\n"
                    "      range; 0 (default) = the native resolution of each chart's view.");

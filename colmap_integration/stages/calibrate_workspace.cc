@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/raycast/images_by_camera.h"
 #include "lib/model/light_rig_json.h"
 #include "colmap_integration/io/sparse_model_io.h"
@@ -352,13 +353,42 @@ void CalibrateOptions::Check() const {
   sampling.Check();
 }
 
+void AddCalibrationSources(const CalibrateOptions& options, InputsAndOutputs* paths) {
+  paths->AddInput(options.targets, "the targets file");
+  paths->AddInput(options.targets_workspace, "the targets' workspace");
+  paths->AddInput(options.targets_mesh, "the targets' mesh");
+  paths->AddInput(options.chessboard, "the board file");
+  paths->AddInput(options.chessboard_images, "the board's images");
+  paths->AddInput(options.pure_water, "the pure-water workspace");
+  paths->AddInput(options.shading_rig, "the rig file");
+}
+
+namespace {
+
+// What calibrate reads and writes (output_policy.h).
+InputsAndOutputs PathsOf(const CalibrateOptions& options, const Workspace& workspace) {
+  InputsAndOutputs paths;
+  paths.AddWorkspace(workspace, "the workspace");
+  paths.AddInput(options.mesh, "the mesh");
+  AddCalibrationSources(options, &paths);
+  const fs::path lut = options.output.empty() ? workspace.LutPath() : options.output;
+  for (const fs::path& output : {lut, CoverageLutPath(lut), CalibrationSummaryPath(lut), lut.parent_path() / "slabs"}) {
+    paths.AddOutput(output);
+  }
+  return paths;
+}
+
+}  // namespace
+
 CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
   options.Check();
+  PathsOf(options, FindWorkspace(options.workspace)).Check();
   return CalibrateWorkspace(options, LoadedDive(options.workspace, options.mesh));
 }
 
 CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedDive& dive) {
   given.Check();
+  PathsOf(given, dive.workspace()).Check();
   // The rig file, read once: its lights are the shading from here on.
   CalibrateOptions options = given;
   if (!options.shading_rig.empty()) options.calibration.grid.shading.rig = ReadLightRig(options.shading_rig);

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/calibration/survey_correspondences.h"
 #include "lib/calibration/calibrator.h"
 #include "lib/calibration/known_color_sampling.h"
@@ -75,6 +76,10 @@ struct CalibrateSummary {
   std::size_t num_pure_water_skipped = 0;  // images that seemed to show a surface
   CalibrationSummary calibration;
 };
+
+// What calibrates from besides the workspace and its mesh (targets, boards, pure water, rig), as inputs
+// no output may touch (output_policy.h).
+void AddCalibrationSources(const CalibrateOptions& options, InputsAndOutputs* paths);
 
 CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options);
 // The same on a dive loaded before (`lutex run` loads it once for every stage): `dive` holds the workspace

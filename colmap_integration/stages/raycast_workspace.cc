@@ -8,6 +8,7 @@
 
 
 #include "colmap_integration/io/colmap_array.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/raycast/images_by_camera.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
@@ -27,13 +28,28 @@ void RaycastOptions::Check() const {
   if (mesh.empty()) throw OptionError("{mesh} is required");
 }
 
+namespace {
+
+// What raycast reads and writes (output_policy.h).
+InputsAndOutputs PathsOf(const RaycastOptions& options, const Workspace& workspace) {
+  InputsAndOutputs paths;
+  paths.AddWorkspace(workspace, "the workspace");
+  paths.AddInput(options.mesh, "the mesh");
+  paths.AddOutput(options.output.empty() ? workspace.RaycastDir() : options.output);
+  return paths;
+}
+
+}  // namespace
+
 RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
   options.Check();
+  PathsOf(options, FindWorkspace(options.workspace)).Check();
   return RaycastWorkspace(options, LoadedDive(options.workspace, options.mesh));
 }
 
 RaycastSummary RaycastWorkspace(const RaycastOptions& options, const LoadedDive& dive) {
   options.Check();
+  PathsOf(options, dive.workspace()).Check();
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

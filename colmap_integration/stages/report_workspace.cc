@@ -20,6 +20,7 @@
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/stages/stage_record.h"
 #include "colmap_integration/io/workspace.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/image/image_io.h"
 #include "lib/lut/lut_file.h"
 #include "lib/lut/lut_slab_images.h"
@@ -318,6 +319,11 @@ ReportSummary WriteReport(const ReportOptions& options) {
   const Workspace workspace = FindWorkspace(options.workspace);
   const fs::path lut = options.lut.empty() ? workspace.LutPath() : options.lut;
   const fs::path folder = options.output.empty() ? workspace.ReportDir() : options.output;
+  InputsAndOutputs paths;
+  paths.AddWorkspace(workspace, "the workspace");
+  paths.AddInput(lut, "the LUT");
+  paths.AddOutput(folder);
+  paths.Check();
   PictureEmbedder pictures;
   std::ostringstream html;
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());

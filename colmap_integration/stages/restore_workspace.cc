@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "colmap_integration/io/confidence_map_io.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/raycast/images_by_camera.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
@@ -69,13 +70,32 @@ void RestoreOptions::Check() const {
   restoration.Check();
 }
 
+namespace {
+
+// What restore reads and writes (output_policy.h).
+InputsAndOutputs PathsOf(const RestoreOptions& options, const Workspace& workspace) {
+  InputsAndOutputs paths;
+  paths.AddWorkspace(workspace, "the workspace");
+  paths.AddInput(options.mesh, "the mesh");
+  paths.AddInput(options.lut, "the LUT");
+  paths.AddInput(CoveragePath(options), "the LUT's coverage");
+  const fs::path output = options.output.empty() ? workspace.RestoredDir() : options.output;
+  paths.AddOutput(output);
+  paths.AddOutput(ConfidenceDirOf(output));
+  return paths;
+}
+
+}  // namespace
+
 RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
   options.Check();
+  PathsOf(options, FindWorkspace(options.workspace)).Check();
   return RestoreWorkspace(options, LoadedDive(options.workspace, options.mesh));
 }
 
 RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive& dive) {
   options.Check();
+  PathsOf(options, dive.workspace()).Check();
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

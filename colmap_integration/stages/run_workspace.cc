@@ -9,9 +9,11 @@
 
 #include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "colmap_integration/stages/report_workspace.h"
 #include "colmap_integration/stages/stage_record.h"
 #include "lib/util/atomic_output.h"
+#include "lib/util/file_lock.h"
 #include "lib/util/logging.h"
 #include "lib/util/option_error.h"
 
@@ -239,6 +241,24 @@ class DiveRun {
   RestoreOptions restore_;  // as the restore stage ran, for the texture stage
 };
 
+// What the whole run reads and writes (output_policy.h), checked before the first stage starts: the stages
+// check their own again, but a late stage's refusal must not come after an early stage has written.
+InputsAndOutputs RunPaths(const RunOptions& options, const Workspace& workspace) {
+  InputsAndOutputs paths;
+  paths.AddWorkspace(workspace, "the workspace");
+  paths.AddInput(options.mesh, "the mesh");
+  paths.AddInput(options.lut, "the LUT");
+  AddCalibrationSources(options.calibrate, &paths);
+  paths.AddOutput(workspace.RunRecordsDir());
+  if (options.raycast_maps) paths.AddOutput(workspace.RaycastDir());
+  if (options.lut.empty()) paths.AddOutput(workspace.LutPath().parent_path());
+  paths.AddOutput(workspace.RestoredDir());
+  paths.AddOutput(ConfidenceDirOf(workspace.RestoredDir()));
+  paths.AddOutput(workspace.ModelPath());
+  if (options.report) paths.AddOutput(workspace.ReportDir());
+  return paths;
+}
+
 }  // namespace
 
 void RunOptions::Check() const {
@@ -256,6 +276,10 @@ RunSummary RunWorkspace(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   DiveRun run(options);
   if (!fs::exists(options.mesh)) throw std::runtime_error(options.mesh.string() + ": no such mesh file");
+  const Workspace workspace = FindWorkspace(options.workspace);
+  RunPaths(options, workspace).Check();
+  // One writer per workspace: a second run would take the first one's records for an interrupted run.
+  const ExclusiveFileLock lock(workspace.OutputDir() / ".lock", workspace.root.string());
   if (options.raycast_maps) run.Raycast();
   run.Calibrate();
   run.Restore();

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "colmap_integration/io/colmap_array.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/model/scene_description.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "lib/geometry/mesh_io.h"
@@ -27,6 +28,12 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
   options.Check();
   const auto start = std::chrono::steady_clock::now();
   SceneDescription scene = ReadSceneDescription(options.scene);
+  InputsAndOutputs paths;
+  paths.AddInput(options.scene, "the scene description");
+  paths.AddInput(scene.mesh_path, "the scene's mesh");
+  paths.AddInput(scene.texture_path, "the scene's albedo texture");
+  paths.AddOutput(options.output);
+  paths.Check();
   scene.simulator.num_threads = options.num_threads;
   const Mesh mesh = scene.mesh_path.empty() ? MakeSyntheticSeafloor(scene.seafloor) : ReadMesh(scene.mesh_path);
   SurfaceAlbedo albedo = SurfaceAlbedo::Constant(scene.constant_albedo);

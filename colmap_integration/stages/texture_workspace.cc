@@ -8,7 +8,9 @@
 #include "colmap_integration/stages/restore_workspace.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/geometry/mesh_io.h"
+#include "lib/geometry/up_direction.h"
 #include "lib/util/logging.h"
 #include "lib/util/option_error.h"
 #include "texturing/textured_mesh_io.h"
@@ -22,16 +24,51 @@ void TextureOptions::Check() const {
   if (mesh.empty()) throw OptionError("{mesh} is required");
   if (!output.empty()) CheckTexturedMeshPath(output);
   if (page_encoding == ImageEncoding::kFloat) throw std::invalid_argument("pages are srgb8 or linear16");
+  if (up_axis != "auto" && !AxisFromName(up_axis)) {
+    throw OptionError("{up_axis} must be auto, x, -x, y, -y, z or -z, not '" + up_axis + "'");
+  }
   baking.Check();
 }
 
+namespace {
+
+// The model's up: the option's axis, or from the views' optical axes.
+Eigen::Vector3d UpOf(const TextureOptions& options, const std::vector<TextureView>& views) {
+  if (options.up_axis != "auto") return *AxisFromName(options.up_axis);
+  std::vector<Eigen::Vector3d> directions_in_world;
+  for (const TextureView& view : views) {
+    directions_in_world.push_back(view.cam_from_world.rotation.inverse() * Eigen::Vector3d::UnitZ());
+  }
+  try {
+    return UpFromViewingDirections(directions_in_world);
+  } catch (const std::invalid_argument& error) {
+    throw OptionError(std::string(error.what()) + "; give the model's up axis with {up_axis}");
+  }
+}
+
+// What texture reads and writes (output_policy.h): the images it textures from are found later (restored
+// or not), so both candidate folders count as inputs.
+InputsAndOutputs PathsOf(const TextureOptions& options, const Workspace& workspace) {
+  InputsAndOutputs paths;
+  paths.AddWorkspace(workspace, "the workspace");
+  paths.AddInput(options.mesh, "the mesh");
+  paths.AddInput(options.images.empty() ? workspace.RestoredDir() : options.images, "the images to texture from");
+  paths.AddInput(options.confidence, "the confidence maps");
+  paths.AddOutput(options.output.empty() ? workspace.ModelPath() : options.output);
+  return paths;
+}
+
+}  // namespace
+
 TextureSummary TextureWorkspace(const TextureOptions& options) {
   options.Check();
+  PathsOf(options, FindWorkspace(options.workspace)).Check();
   return TextureWorkspace(options, LoadedDive(options.workspace, options.mesh));
 }
 
 TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive& dive) {
   options.Check();
+  PathsOf(options, dive.workspace()).Check();
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();
@@ -87,8 +124,11 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   if (!confidence_paths.empty()) {
     source.confidence = [&](std::size_t v) { return ReadConfidenceMap(confidence_paths[v], views[v].camera); };
   }
+  summary.up = UpOf(options, views);
+  summary.up_from_cameras = options.up_axis == "auto";
   TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, options.baking);
   summary.baking = result.summary;
+  result.textured.up = summary.up;
   summary.written = WriteTexturedMesh(result.textured, output, options.page_encoding);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
@@ -122,6 +162,9 @@ void PrintTextureSummary(std::ostream& out, const TextureSummary& summary) {
             << "  images: " << summary.images.string() << "\n"
             << "  confidence: " << (summary.confidence.empty() ? std::string("not used") : summary.confidence.string())
             << "\n";
+  out << "  up: " << DirectionName(summary.up) << " of the model"
+      << (summary.up_from_cameras ? " (opposite the cameras' mean viewing direction)" : " (as given)")
+      << "; the GLB turns it to glTF's +Y\n";
   for (const auto& path : summary.written) out << "  wrote " << path.string() << "\n";
 }
 

@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <string>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -35,6 +36,9 @@ struct TextureOptions {
   // Encoding of OBJ/PLY pages (glTF pages are always 8-bit sRGB).
   ImageEncoding page_encoding = ImageEncoding::kSrgb8;
   TextureBakingOptions baking;
+  // The model's up axis for the GLB ("x", "-x", "y", "-y", "z", "-z"), or "auto": opposite the cameras'
+  // mean viewing direction, snapped to an axis within 10 degrees (lib/geometry/up_direction.h).
+  std::string up_axis = "auto";
   void Check() const;
 };
 
@@ -43,6 +47,8 @@ struct TextureSummary {
   std::filesystem::path images;
   std::filesystem::path confidence;  // empty when not used
   TextureBakingSummary baking;
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  // in the model's frame; the GLB turns it to +Y
+  bool up_from_cameras = false;
   double seconds = 0.0;
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
@@ -49,14 +50,49 @@ tinygltf::Model ReadGlb(const std::filesystem::path& path) {
   return model;
 }
 
+// The root node's rotation (glTF stores x, y, z, w) and translation.
+Eigen::Quaterniond GltfFromModel(const tinygltf::Node& node) {
+  EXPECT_EQ(node.rotation.size(), 4u);
+  if (node.rotation.size() != 4) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+}
+
+Eigen::Vector3d Translation(const tinygltf::Node& node) {
+  EXPECT_EQ(node.translation.size(), 3u);
+  if (node.translation.size() != 3) return Eigen::Vector3d::Zero();
+  return Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]);
+}
+
+// glTF is +Y up: a +Z-up seafloor must stand as a floor (its up on +Y, north on glTF's -Z, the standard
+// Z-up to Y-up turn), whatever axis the model calls up.
+TEST(GltfExport, TheModelsUpBecomesGltfsUp) {
+  testing::TempDir dir;
+  TexturedMesh textured = GradientGrid(8);
+  for (const Eigen::Vector3d& up : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, -1, 0), Eigen::Vector3d(0.6, 0, 0.8)}) {
+    textured.up = up;
+    WriteGltf(textured, dir.path() / "model.glb");
+    const tinygltf::Model model = ReadGlb(dir.path() / "model.glb");
+    ASSERT_EQ(model.nodes.size(), 1u);
+    const Eigen::Quaterniond gltf_from_model = GltfFromModel(model.nodes[0]);
+    EXPECT_NEAR(gltf_from_model.norm(), 1.0, 1e-12);
+    EXPECT_LT((gltf_from_model * up - Eigen::Vector3d::UnitY()).norm(), 1e-12) << up.transpose();
+    if (up.z() == 1.0) {
+      EXPECT_LT((gltf_from_model * Eigen::Vector3d::UnitY() - Eigen::Vector3d(0, 0, -1)).norm(), 1e-12);
+      EXPECT_LT((gltf_from_model * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitX()).norm(), 1e-12);
+    }
+    // The bounds' centre of the mesh, turned the same way, is where the node puts the local positions.
+    const Eigen::Vector3d centre(500005.0, 6000005.0, 0.0);
+    EXPECT_NEAR((gltf_from_model.inverse() * Translation(model.nodes[0]) - centre).head<2>().norm(), 0.0, 1e-6);
+  }
+}
+
 TEST(GltfExport, GlbHoldsTheMeshLocallyWithTheOriginInTheRootNode) {
   testing::TempDir dir;
   const TexturedMesh textured = GradientGrid(8);
   WriteGltf(textured, dir.path() / "model.glb");
   const tinygltf::Model model = ReadGlb(dir.path() / "model.glb");
   ASSERT_EQ(model.nodes.size(), 1u);
-  ASSERT_EQ(model.nodes[0].translation.size(), 3u);
-  const Eigen::Vector3d origin(model.nodes[0].translation[0], model.nodes[0].translation[1], model.nodes[0].translation[2]);
+  const Eigen::Vector3d origin = GltfFromModel(model.nodes[0]).inverse() * Translation(model.nodes[0]);
   EXPECT_NEAR(origin.x(), 500005.0, 1e-9);
   EXPECT_NEAR(origin.y(), 6000005.0, 1e-9);
   // One textured primitive and one for the untextured face; both unlit.
@@ -69,7 +105,7 @@ TEST(GltfExport, GlbHoldsTheMeshLocallyWithTheOriginInTheRootNode) {
   EXPECT_EQ(model.images[0].mimeType, "image/png");
   EXPECT_EQ(model.images[0].width, 64);
   EXPECT_EQ(model.accessors[primitive.indices].count, 3 * (textured.mesh.faces.size() - 1));
-  // Every vertex + the root translation is a mesh vertex (to float precision of the local coordinates).
+  // Every vertex + the root origin is a mesh vertex (to float precision of the local coordinates).
   const tinygltf::Accessor& positions = model.accessors[primitive.attributes.at("POSITION")];
   const tinygltf::BufferView& view = model.bufferViews[positions.bufferView];
   const auto* xyz = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + positions.byteOffset);

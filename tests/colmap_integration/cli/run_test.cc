@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <functional>
@@ -254,6 +255,9 @@ TEST_F(RunTest, EveryStageSharesOneLoadedDive) {
   }
   EXPECT_EQ(TimesMeshWasRead(run.output, workspace / "scene" / "mesh.ply"), 1) << run.output;
   EXPECT_EQ(TimesMeshWasRead(run.output, data_->path() / "board" / "scene" / "mesh.ply"), 1);
+  // The simulated seafloor is +Z up and the survey looks down: the GLB is turned to glTF's +Y from that.
+  EXPECT_NE(run.output.find("up: +z of the model (opposite the cameras' mean viewing direction)"), std::string::npos)
+      << run.output;
 }
 
 TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
@@ -408,6 +412,32 @@ TEST_F(RunTest, BadInputFailsWithOneLineNamingItAndWritesNothing) {
   EXPECT_NE(nothing.exit_code, 0);
   EXPECT_NE(nothing.output.find("nothing to calibrate from"), std::string::npos) << nothing.output;
   EXPECT_FALSE(fs::exists(workspace / "lutex"));
+}
+
+// One writer per workspace: a second run while the first is working is refused, naming the first one's pid;
+// after the first is killed, its lock file is taken over with a warning and the run completes.
+TEST_F(RunTest, ASecondRunOnABusyWorkspaceIsRefusedAndAKilledRunsLockIsTakenOver) {
+  testing::TempDir dir;
+  const fs::path workspace = CopyOfSurvey(dir.path() / "W");
+  std::vector<std::string> arguments = RunArguments(workspace);
+  arguments.push_back("--no-report");
+  testing::CommandResult second;
+  const bool killed = KillRunWhen(arguments, [&] {
+    if (!StageStarted(workspace, "calibrate")) return false;
+    second = Run(workspace, "--no-report");
+    return true;
+  });
+  ASSERT_TRUE(killed) << "the first run ended before the second started";
+  EXPECT_EQ(second.exit_code, 1) << second.output;
+  EXPECT_NE(second.output.find(workspace.string() + " is in use by lutex pid "), std::string::npos) << second.output;
+  EXPECT_EQ(std::count(second.output.begin(), second.output.end(), '\n'), 1) << second.output;
+  ASSERT_TRUE(fs::exists(workspace / "lutex" / ".lock"));  // left by the killed run
+
+  const testing::CommandResult third = Run(workspace, "--no-report");
+  EXPECT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_NE(third.output.find("ended without releasing it (killed or crashed); taking it over"), std::string::npos)
+      << third.output;
+  EXPECT_FALSE(fs::exists(workspace / "lutex" / ".lock"));  // released
 }
 
 TEST_F(RunTest, KilledInEveryStageAndStartedAgainEndsWithTheSameOutputs) {
