@@ -13,6 +13,13 @@ constexpr std::uint64_t kMaxReserve = 1u << 16;
 
 std::string Which(const char* kind, std::uint64_t id) { return std::string(kind) + " " + std::to_string(id); }
 
+// COLMAP's files end with their last record: bytes after it mean the count is wrong or the file is damaged.
+void ExpectEnd(std::istream& stream, std::uint64_t count, const char* records) {
+  if (stream.peek() == std::istream::traits_type::eof()) return;
+  throw std::runtime_error("data after the last of the " + std::to_string(count) + " " + records +
+                           " the file declares (a wrong count, or a damaged file)");
+}
+
 }  // namespace
 
 std::map<std::uint32_t, Camera> ReadCamerasBinary(std::istream& stream) {
@@ -34,6 +41,7 @@ std::map<std::uint32_t, Camera> ReadCamerasBinary(std::istream& stream) {
     for (double& param : camera.params) param = ReadBinary<double>(stream, (which + " (params)").c_str());
     if (!cameras.emplace(camera.camera_id, camera).second) throw std::runtime_error(which + " is defined twice");
   }
+  ExpectEnd(stream, count, "cameras");
   return cameras;
 }
 
@@ -66,6 +74,7 @@ std::map<std::uint32_t, Image> ReadImagesBinary(std::istream& stream) {
     }
     if (!images.emplace(image.image_id, std::move(image)).second) throw std::runtime_error(which + " is defined twice");
   }
+  ExpectEnd(stream, count, "images");
   return images;
 }
 
@@ -91,6 +100,7 @@ std::map<std::uint64_t, Point3D> ReadPoints3DBinary(std::istream& stream) {
       throw std::runtime_error(which + " is defined twice");
     }
   }
+  ExpectEnd(stream, count, "3-D points");
   return points3D;
 }
 

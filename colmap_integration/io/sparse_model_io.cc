@@ -28,8 +28,11 @@ SparseModel ReadSparseModel(const fs::path& folder) {
     model.images = ReadImagesText(folder / "images.txt");
     if (fs::exists(folder / "points3D.txt")) model.points3D = ReadPoints3DText(folder / "points3D.txt");
   }
-  // Most inconsistencies are an image naming what the other files lack: name the images file.
-  model.Check((folder / (binary ? "images.bin" : "images.txt")).string());
+  // Each fault is reported against the file that holds it.
+  const char* extension = binary ? ".bin" : ".txt";
+  model.CheckCameras((folder / (std::string("cameras") + extension)).string());
+  model.CheckImages((folder / (std::string("images") + extension)).string());
+  model.CheckPoints3D((folder / (std::string("points3D") + extension)).string());
   return model;
 }
 

@@ -184,6 +184,9 @@ void Camera::Check(const std::string& context) const {
             << " parameters (" << info.params_info << "), but " << params.size() << " are given";
   } else if (width == 0 || height == 0) {
     problem << "camera " << camera_id << " has an empty image size " << width << "x" << height;
+  } else if (width > kMaxImageSide || height > kMaxImageSide) {
+    problem << "camera " << camera_id << " has an image size " << width << "x" << height << ", beyond "
+            << kMaxImageSide << " pixels a side (a corrupt size field?)";
   } else {
     for (double value : params) {
       if (!std::isfinite(value)) {

@@ -17,6 +17,10 @@
 
 namespace lutex {
 
+// The largest image side lutex accepts, in pixels: far beyond any camera (a 100 MP sensor is about
+// 12 000 a side), so a larger size is a corrupt field, not an image to allocate maps for.
+constexpr std::uint64_t kMaxImageSide = 100000;
+
 enum class CameraModelId : int {
   kSimplePinhole = 0,           // f, cx, cy
   kPinhole = 1,                 // fx, fy, cx, cy
@@ -58,7 +62,7 @@ struct Camera {
                         double fy);
 
   // Throws std::runtime_error starting with `context` when the parameter count does not match the model,
-  // a parameter is not finite, a focal length is not positive or the size is zero.
+  // a parameter is not finite, a focal length is not positive or the size is zero or beyond kMaxImageSide.
   void Check(const std::string& context) const;
 
   // Pixel of a point in the camera frame. The point must have z > 0; otherwise the result is NaN.

@@ -271,6 +271,13 @@ Mesh ReadPly(std::istream& stream) {
       for (std::size_t i = 0; i < element.count; ++i) ReadRecord(reader, element, &record);
     }
   }
+  // More data than the header declares: a wrong count (faces dropped silently) or a damaged file.
+  if (format == PlyFormat::kAscii) stream >> std::ws;
+  if (stream.peek() != std::istream::traits_type::eof()) {
+    throw std::runtime_error("the PLY file holds more data than its header declares (" +
+                             std::to_string(mesh.vertices.size()) + " vertices, " + std::to_string(mesh.faces.size()) +
+                             " faces read)");
+  }
   return mesh;
 }
 

@@ -56,6 +56,11 @@ struct SparseModel {
   // Throws std::runtime_error starting with `context` when a camera is invalid for its model, an image
   // names an undefined camera, a pose is not finite, or a track names an undefined image.
   void Check(const std::string& context) const;
+  // The same for one kind of record, so a reader can name the file that holds the fault: the cameras
+  // alone; the images (and the cameras they name); the 3-D points (and the images their tracks name).
+  void CheckCameras(const std::string& context) const;
+  void CheckImages(const std::string& context) const;
+  void CheckPoints3D(const std::string& context) const;
 };
 
 }  // namespace lutex

@@ -116,6 +116,11 @@ FrustumLut ReadLut(std::istream& stream) {
     if (!node.alpha.allFinite() || !node.beta.allFinite()) {
       throw std::runtime_error("LUT node " + std::to_string(n) + " has a value that is not finite");
     }
+    // Calibration bounds both below by 0: a negative value is a corrupt file, and a negative alpha would
+    // restore every pixel to a negative albedo.
+    if ((node.alpha.array() < 0.0).any() || (node.beta.array() < 0.0).any()) {
+      throw std::runtime_error("LUT node " + std::to_string(n) + " has a negative alpha or beta: the file is corrupt");
+    }
   }
   if (stream.peek() != std::istream::traits_type::eof()) throw std::runtime_error("LUT file has data after its values");
   return lut;

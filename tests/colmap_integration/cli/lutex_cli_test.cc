@@ -181,6 +181,42 @@ TEST(LutexCli, CameraParameterCountMismatch) {
                      {"cameras.txt", "line 1", "takes 4 parameters"});
 }
 
+// Faults are reported against the file that holds them, not against images.bin.
+TEST(LutexCli, EachFaultNamesTheFileThatHoldsIt) {
+  ExpectCleanFailure(SparseFormat::kText,
+                     [](const fs::path& root) { std::ofstream(root / "sparse/0/cameras.txt") << "1 PINHOLE 64 48 0 40 32 24\n"; },
+                     {"cameras.txt", "camera 1 has a focal length that is not positive"});
+  ExpectCleanFailure(SparseFormat::kText,
+                     [](const fs::path& root) { std::ofstream(root / "sparse/0/cameras.txt") << "1 PINHOLE 0 48 40 40 32 24\n"; },
+                     {"cameras.txt", "empty image size 0x48"});
+  ExpectCleanFailure(SparseFormat::kText,
+                     [](const fs::path& root) {
+                       std::ofstream(root / "sparse/0/points3D.txt") << "5 0 0 0 128 128 128 0.5 42 0\n";
+                     },
+                     {"points3D.txt", "3-D point 5 names image 42"});
+}
+
+// A size field corrupted to a huge value is a format error, not 3 GB of maps.
+TEST(LutexCli, CameraSizeBeyondAnySensorIsAFormatError) {
+  ExpectCleanFailure(SparseFormat::kText,
+                     [](const fs::path& root) {
+                       std::ofstream(root / "sparse/0/cameras.txt") << "1 PINHOLE 2147483648 48 40 40 32 24\n";
+                     },
+                     {"cameras.txt", "2147483648x48, beyond 100000 pixels a side"});
+}
+
+// Data after what a file declares means a wrong count or damage: refused, not ignored.
+TEST(LutexCli, DataBeyondWhatAFileDeclaresIsRefused) {
+  ExpectCleanFailure(SparseFormat::kBinary,
+                     [](const fs::path& root) { std::ofstream(root / "sparse/0/images.bin", std::ios::app) << "trailing"; },
+                     {"images.bin", "data after the last of the 3 images"});
+  ExpectCleanFailure(SparseFormat::kBinary,
+                     [](const fs::path& root) {
+                       std::ofstream(root / "plane.ply", std::ios::app | std::ios::binary) << std::string(13, '\1');
+                     },
+                     {"plane.ply", "more data than its header declares"});
+}
+
 TEST(LutexCli, MeshThatIsNotAMesh) {
   ExpectCleanFailure(SparseFormat::kBinary,
                      [](const fs::path& root) { std::ofstream(root / "plane.ply") << "GIF89a not a mesh"; },

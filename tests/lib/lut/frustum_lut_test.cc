@@ -49,6 +49,16 @@ FrustumLut FilledLinear(const FrustumLutGrid& grid) {
   return lut;
 }
 
+// The same made non-negative, as every LUT file holds (calibration bounds alpha and beta below by 0).
+FrustumLut FilledNonNegative(const FrustumLutGrid& grid) {
+  FrustumLut lut = FilledLinear(grid);
+  for (int n = 0; n < grid.NumNodes(); ++n) {
+    lut.node(n).alpha = lut.node(n).alpha.cwiseAbs();
+    lut.node(n).beta = lut.node(n).beta.cwiseAbs();
+  }
+  return lut;
+}
+
 // A LUT filled from a function linear in (u, v, z) (uniform z) or (u, v, 1/z) (uniform 1/z) reproduces it
 // exactly anywhere inside the frustum, because trilinear interpolation is exact on linear functions.
 TEST(FrustumLut, ReproducesLinearFunctionsAnywhere) {
@@ -161,7 +171,7 @@ TEST(FrustumLut, ResampleUpThenDownIsIdentityOnCoarseNodes) {
 }
 
 TEST(LutFile, RoundTripIsExact) {
-  const FrustumLut lut = FilledLinear(Grid(5, 4, 3, DepthSpacing::kUniformInverseZ));
+  const FrustumLut lut = FilledNonNegative(Grid(5, 4, 3, DepthSpacing::kUniformInverseZ));
   testing::TempDir dir;
   WriteLut(lut, dir.path() / "a.lut");
   const FrustumLut read = ReadLut(dir.path() / "a.lut");
@@ -185,7 +195,7 @@ TEST(LutFile, RoundTripKeepsTheShadingRig) {
     light.spot_blend = 0.4;
     grid.shading.rig.lights.push_back(light);
   }
-  const FrustumLut lut = FilledLinear(grid);
+  const FrustumLut lut = FilledNonNegative(grid);
   std::ostringstream written;
   WriteLut(lut, written);
   EXPECT_EQ(written.str().rfind("LUTEX-LUT 2\n", 0), 0u);
@@ -207,7 +217,7 @@ std::string ReadError(const std::string& bytes) {
 
 TEST(LutFile, BadFilesAreClearErrors) {
   std::ostringstream good;
-  WriteLut(FilledLinear(Grid(2, 2, 2, DepthSpacing::kUniformZ)), good);
+  WriteLut(FilledNonNegative(Grid(2, 2, 2, DepthSpacing::kUniformZ)), good);
   const std::string bytes = good.str();
   EXPECT_NE(ReadError(bytes.substr(0, bytes.size() - 5)).find("truncated"), std::string::npos);
   EXPECT_NE(ReadError("hello").find("not a lutex LUT"), std::string::npos);
@@ -218,6 +228,13 @@ TEST(LutFile, BadFilesAreClearErrors) {
   const double nan = std::nan("");
   std::memcpy(&with_nan[with_nan.size() - 8], &nan, 8);
   EXPECT_NE(ReadError(with_nan).find("not finite"), std::string::npos);
+  // The last node's alpha (red), then its beta (blue), made negative: calibration never writes those.
+  for (const std::size_t from_end : {std::size_t{48}, std::size_t{8}}) {
+    std::string negative = bytes;
+    const double value = -0.25;
+    std::memcpy(&negative[negative.size() - from_end], &value, 8);
+    EXPECT_NE(ReadError(negative).find("negative alpha or beta: the file is corrupt"), std::string::npos) << from_end;
+  }
 }
 
 TEST(LutSlabImages, OneAlphaAndOneBetaPicturePerSlab) {
