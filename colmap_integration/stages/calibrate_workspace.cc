@@ -247,6 +247,12 @@ void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationR
   json["pure_water_images"] = summary.num_pure_water_images;
   json["pure_water_images_skipped"] = summary.num_pure_water_skipped;
   json["covered_fraction"] = result.summary.covered_fraction;
+  const RestoredObservationStats& restored = summary.restored_observations;
+  json["restored_observations"] = {
+      {"count", restored.count},
+      {"implausible_fraction", {restored.implausible_fraction.x(), restored.implausible_fraction.y(),
+                                restored.implausible_fraction.z()}},
+      {"median_albedo", {restored.median_albedo.x(), restored.median_albedo.y(), restored.median_albedo.z()}}};
   json["seconds"] = result.summary.seconds;
   for (const CalibrationLevelSummary& level : result.summary.levels) {
     json["levels"].push_back({{"nx", level.nx}, {"ny", level.ny},
@@ -409,6 +415,8 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
             << " pure-water observations";
   const CalibrationResult result = Calibrate(observations, ReferenceLut(options, camera, calibration.grid), calibration);
 
+  summary.restored_observations = RestoreObservations(result.lut, observations);
+  CheckSolveIsPlausible(summary.restored_observations);
   summary.lut = options.output.empty() ? dive.workspace().LutPath() : options.output;
   summary.calibration = result.summary;
   WriteLut(result.lut, summary.lut);
@@ -429,6 +437,12 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << "; correspondence albedo RMS " << c.correspondence_albedo_rms.x() << " " << c.correspondence_albedo_rms.y()
             << " " << c.correspondence_albedo_rms.z() << "; " << std::setprecision(0) << 100 * c.covered_fraction << " % of nodes covered; "
             << std::setprecision(1) << c.seconds << " s\n"
+            << "  observations restored with the LUT: median albedo " << std::setprecision(3)
+            << summary.restored_observations.median_albedo.x() << " " << summary.restored_observations.median_albedo.y()
+            << " " << summary.restored_observations.median_albedo.z() << ", outside [-0.25, 1.5]: " << std::setprecision(1)
+            << 100 * summary.restored_observations.implausible_fraction.x() << " "
+            << 100 * summary.restored_observations.implausible_fraction.y() << " "
+            << 100 * summary.restored_observations.implausible_fraction.z() << " %\n"
             << "  LUT:      " << summary.lut.string() << "\n"
             << "  coverage: " << CoverageLutPath(summary.lut).string() << "\n";
 }

@@ -23,6 +23,7 @@
 #include "lib/calibration/calibrator.h"
 #include "lib/calibration/known_color_sampling.h"
 #include "lib/calibration/pure_water_sampling.h"
+#include "lib/calibration/solve_plausibility.h"
 #include "lib/image/image_io.h"
 
 namespace lutex {
@@ -75,6 +76,9 @@ struct CalibrateSummary {
   std::size_t num_pure_water_images = 0;
   std::size_t num_pure_water_skipped = 0;  // images that seemed to show a surface
   CalibrationSummary calibration;
+  // The observations restored with the fitted LUT (lib/calibration/solve_plausibility.h); a solve whose
+  // observations restore to implausible albedos is refused before the LUT is written.
+  RestoredObservationStats restored_observations;
 };
 
 // What calibrates from besides the workspace and its mesh (targets, boards, pure water, rig), as inputs
