@@ -40,10 +40,13 @@ void InputsAndOutputs::AddOutput(const fs::path& path) {
 }
 
 void InputsAndOutputs::Check() const {
+  std::vector<fs::path> resolved_inputs;
+  for (const Input& input : inputs_) resolved_inputs.push_back(Resolved(input.path));
   for (const fs::path& output : outputs_) {
     const fs::path resolved_output = Resolved(output);
-    for (const Input& input : inputs_) {
-      const fs::path resolved_input = Resolved(input.path);
+    for (std::size_t i = 0; i < inputs_.size(); ++i) {
+      const Input& input = inputs_[i];
+      const fs::path& resolved_input = resolved_inputs[i];
       const bool inside = IsWithin(resolved_output, resolved_input);
       const bool contains = IsWithin(resolved_input, resolved_output);
       if (!inside && !contains) continue;

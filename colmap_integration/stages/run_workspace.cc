@@ -162,8 +162,7 @@ class DiveRun {
 
   // Every image to albedo, with confidence maps.
   void Restore() {
-    restore_ = options_.restore;
-    RestoreOptions& restore = restore_;
+    RestoreOptions restore = options_.restore;
     restore.workspace = options_.workspace;
     restore.mesh = options_.mesh;
     restore.lut = summary_.lut;
@@ -194,7 +193,8 @@ class DiveRun {
     texture.images = summary_.restored;
     texture.confidence = summary_.confidence;
     texture.image_encoding =
-        restore_.output_encoding == "same" ? options_.input_encoding : ParseImageEncoding(restore_.output_encoding);
+        options_.restore.output_encoding == "same" ? options_.input_encoding
+                                                   : ParseImageEncoding(options_.restore.output_encoding);
     texture.output = workspace_.ModelPath();
     texture.baking.num_threads = options_.num_threads;
     summary_.model = texture.output;
@@ -215,6 +215,7 @@ class DiveRun {
     summary_.report = WriteReport(report).index;
   }
 
+  const Workspace& workspace() const { return workspace_; }
   RunSummary& summary() { return summary_; }
 
  private:
@@ -238,7 +239,6 @@ class DiveRun {
   StageRunner runner_;
   RunSummary summary_;
   std::unique_ptr<LoadedDive> loaded_;
-  RestoreOptions restore_;  // as the restore stage ran, for the texture stage
 };
 
 // What the whole run reads and writes (output_policy.h), checked before the first stage starts: the stages
@@ -276,10 +276,9 @@ RunSummary RunWorkspace(const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   DiveRun run(options);
   if (!fs::exists(options.mesh)) throw std::runtime_error(options.mesh.string() + ": no such mesh file");
-  const Workspace workspace = FindWorkspace(options.workspace);
-  RunPaths(options, workspace).Check();
+  RunPaths(options, run.workspace()).Check();
   // One writer per workspace: a second run would take the first one's records for an interrupted run.
-  const ExclusiveFileLock lock(workspace.OutputDir() / ".lock", workspace.root.string());
+  const ExclusiveFileLock lock(run.workspace().OutputDir() / ".lock", run.workspace().root.string());
   if (options.raycast_maps) run.Raycast();
   run.Calibrate();
   run.Restore();

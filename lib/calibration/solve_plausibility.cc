@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "lib/model/image_formation.h"
 
 namespace lutex {
 
@@ -19,14 +20,12 @@ constexpr double kHighestPlausible = 1.5;
 
 RestoredObservationStats RestoreObservations(const FrustumLut& lut, const ObservationSet& observations) {
   std::array<std::vector<double>, 3> albedos;
+  // As restoration does it; alpha = 0 gives an infinite or undefined albedo, which counts as implausible.
   const auto restore = [&](const Eigen::Vector2d& pixel, const Eigen::Vector3d& point_in_cam,
                            const Eigen::Vector3d& intensity, double cos_theta) {
     const LutNode node = lut.Lookup(pixel.x(), pixel.y(), point_in_cam.z());
-    for (int c = 0; c < 3; ++c) {
-      const double signal = node.alpha[c] * cos_theta;
-      // alpha = 0 restores any signal to an unbounded albedo: implausible, whatever its sign.
-      albedos[c].push_back(signal > 0.0 ? (intensity[c] - node.beta[c]) / signal : HUGE_VAL);
-    }
+    const Eigen::Vector3d albedo = RestoreAlbedo(node.alpha, node.beta, cos_theta, intensity);
+    for (int c = 0; c < 3; ++c) albedos[c].push_back(albedo[c]);
   };
   for (const KnownColorObservation& o : observations.known_colors) restore(o.pixel, o.point_in_cam, o.intensity, o.cos_theta);
   for (const CorrespondenceObservation& o : observations.correspondences) {

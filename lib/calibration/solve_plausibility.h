@@ -1,8 +1,8 @@
 #pragma once
 
 // Whether a fitted LUT is physically plausible on the very observations it was fitted to. Every surface
-// observation (known colour, or either view of a correspondence) is restored with the LUT,
-// rho = (I - beta) / (alpha cos_theta), per channel. A sane solve gives albedos in [0, 1] up to noise. A
+// observation (known colour, or either view of a correspondence) is restored with the LUT as restoration
+// does it (RestoreAlbedo, lib/model/image_formation.h), rho = (I - beta) / (alpha cos_theta), per channel. A sane solve gives albedos in [0, 1] up to noise. A
 // solve that diverged (alpha driven towards 0, beta above the signal: seen with a light rig, whose
 // correspondences alone leave a factor per channel free) gives albedos in the thousands or below zero.
 // Such a LUT must never be written: it would restore a whole dive to nonsense.
