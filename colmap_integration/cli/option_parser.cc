@@ -132,6 +132,9 @@ void OptionParser::Apply(std::string argument, const std::function<std::string(c
     option.text = negated ? "off" : "on";
   } else {
     if (!has_value) value = next_value(option.name);
+    // "mesh =" in a config file (or --mesh=) says nothing; taken as given it would read as "--mesh is
+    // required" or an empty path far from the line that caused it.
+    if (Trimmed(value).empty()) throw std::invalid_argument("--" + option.name + " has an empty value");
     if (option.is_path && !relative_to.empty() && !value.empty() && std::filesystem::path(value).is_relative()) {
       value = (relative_to / value).lexically_normal().string();
     }

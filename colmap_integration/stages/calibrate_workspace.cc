@@ -394,7 +394,9 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
 
 CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedDive& dive) {
   given.Check();
-  PathsOf(given, dive.workspace()).Check();
+  const InputsAndOutputs paths = PathsOf(given, dive.workspace());
+  paths.Check();
+  paths.RemoveStaleTemporaries();
   // The rig file, read once: its lights are the shading from here on.
   CalibrateOptions options = given;
   if (!options.shading_rig.empty()) options.calibration.grid.shading.rig = ReadLightRig(options.shading_rig);

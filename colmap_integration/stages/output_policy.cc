@@ -1,6 +1,10 @@
 #include "colmap_integration/stages/output_policy.h"
 
 #include <stdexcept>
+#include <system_error>
+
+#include "lib/util/atomic_output.h"
+#include "lib/util/logging.h"
 
 namespace lutex {
 
@@ -24,6 +28,24 @@ bool IsWithin(const fs::path& inner, const fs::path& outer) {
   return true;
 }
 
+// An output can be made only if the nearest part of its path that exists is a folder (or, for the
+// output itself, what it will replace): "afile/x" with afile a file cannot.
+void CheckCanBeCreated(const fs::path& output) {
+  std::error_code error;
+  for (fs::path ancestor = output.parent_path(); !ancestor.empty(); ancestor = ancestor.parent_path()) {
+    const fs::file_status status = fs::status(ancestor, error);
+    if (status.type() == fs::file_type::not_found) {
+      if (ancestor == ancestor.parent_path()) break;
+      continue;
+    }
+    if (status.type() != fs::file_type::directory) {
+      throw std::runtime_error(output.string() + ": cannot be written, " + ancestor.string() +
+                               " is a file, not a folder");
+    }
+    return;
+  }
+}
+
 }  // namespace
 
 void InputsAndOutputs::AddInput(const fs::path& path, const std::string& what) {
@@ -40,6 +62,7 @@ void InputsAndOutputs::AddOutput(const fs::path& path) {
 }
 
 void InputsAndOutputs::Check() const {
+  for (const fs::path& output : outputs_) CheckCanBeCreated(output);
   std::vector<fs::path> resolved_inputs;
   for (const Input& input : inputs_) resolved_inputs.push_back(Resolved(input.path));
   for (const fs::path& output : outputs_) {
@@ -53,6 +76,17 @@ void InputsAndOutputs::Check() const {
       const std::string relation = inside && contains ? "is " : inside ? "lies inside " : "contains ";
       throw std::runtime_error(output.string() + ": the output " + relation + input.what + " (" + input.path.string() +
                                "); lutex never writes over or inside its inputs: choose an output outside them");
+    }
+  }
+}
+
+void InputsAndOutputs::RemoveStaleTemporaries() const {
+  for (const fs::path& output : outputs_) {
+    std::error_code error;
+    const std::size_t removed = fs::is_directory(output, error) ? lutex::RemoveStaleTemporaries(output)
+                                                                : RemoveStaleTemporariesOf(output);
+    if (removed > 0) {
+      LogInfo() << "removed " << removed << " unfinished file(s) of an interrupted command at " << output.string();
     }
   }
 }

@@ -26,8 +26,12 @@ class InputsAndOutputs {
   void AddOutput(const std::filesystem::path& path);
 
   // Throws std::runtime_error naming the output and the input, e.g. "W/images/x: the output lies inside
-  // the images of the workspace (W/images); choose an output outside the inputs".
+  // the images of the workspace (W/images); choose an output outside the inputs", or naming the output
+  // and the file in its way ("afile/x: cannot be written, afile is a file, not a folder").
   void Check() const;
+  // Removes what killed writers left of the outputs (lib/util/atomic_output.h: in an output folder, every
+  // stale temporary under it; beside an output file, that file's), saying so; a live writer's are kept.
+  void RemoveStaleTemporaries() const;
 
  private:
   struct Input {

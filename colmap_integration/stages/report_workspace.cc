@@ -324,6 +324,7 @@ ReportSummary WriteReport(const ReportOptions& options) {
   paths.AddInput(lut, "the LUT");
   paths.AddOutput(folder);
   paths.Check();
+  paths.RemoveStaleTemporaries();
   PictureEmbedder pictures;
   std::ostringstream html;
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());

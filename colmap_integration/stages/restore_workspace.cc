@@ -95,7 +95,9 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
 
 RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive& dive) {
   options.Check();
-  PathsOf(options, dive.workspace()).Check();
+  const InputsAndOutputs paths = PathsOf(options, dive.workspace());
+  paths.Check();
+  paths.RemoveStaleTemporaries();
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

@@ -34,6 +34,7 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
   paths.AddInput(scene.texture_path, "the scene's albedo texture");
   paths.AddOutput(options.output);
   paths.Check();
+  paths.RemoveStaleTemporaries();
   scene.simulator.num_threads = options.num_threads;
   const Mesh mesh = scene.mesh_path.empty() ? MakeSyntheticSeafloor(scene.seafloor) : ReadMesh(scene.mesh_path);
   SurfaceAlbedo albedo = SurfaceAlbedo::Constant(scene.constant_albedo);

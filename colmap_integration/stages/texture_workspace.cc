@@ -68,7 +68,9 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
 
 TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive& dive) {
   options.Check();
-  PathsOf(options, dive.workspace()).Check();
+  const InputsAndOutputs paths = PathsOf(options, dive.workspace());
+  paths.Check();
+  paths.RemoveStaleTemporaries();
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

@@ -1,6 +1,10 @@
 #include "lib/util/atomic_output.h"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
 
 #include <atomic>
 #include <stdexcept>
@@ -40,13 +44,40 @@ void AtomicOutputFile::Commit() {
   committed_ = true;
 }
 
+bool IsStaleTemporary(const std::filesystem::path& path) {
+  // ".STEM.tmpPID_N.EXT": the writer's process id follows the last ".tmp".
+  const std::string name = path.filename().string();
+  if (name.size() < 2 || name[0] != '.') return false;
+  const std::size_t tmp = name.rfind(".tmp");
+  if (tmp == std::string::npos || tmp == 0) return false;
+  std::size_t end = tmp + 4;
+  while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
+  if (end == tmp + 4 || end >= name.size() || name[end] != '_') return false;
+  const long pid = std::stol(name.substr(tmp + 4, end - tmp - 4));
+  // A live writer (this process, or another command writing beside us) keeps its temporaries.
+  return pid > 0 && kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
 std::size_t RemoveStaleTemporaries(const std::filesystem::path& folder) {
   std::error_code error;
   if (!std::filesystem::is_directory(folder, error)) return 0;
   std::vector<std::filesystem::path> stale;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos) {
+    if (entry.is_regular_file() && IsStaleTemporary(entry.path())) stale.push_back(entry.path());
+  }
+  for (const auto& path : stale) std::filesystem::remove(path, error);
+  return stale.size();
+}
+
+std::size_t RemoveStaleTemporariesOf(const std::filesystem::path& file) {
+  std::error_code error;
+  const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(folder, error)) return 0;
+  const std::string prefix = "." + file.stem().string() + ".tmp";
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (entry.is_regular_file() && entry.path().filename().string().rfind(prefix, 0) == 0 &&
+        IsStaleTemporary(entry.path())) {
       stale.push_back(entry.path());
     }
   }

@@ -30,8 +30,14 @@ class AtomicOutputFile {
   bool committed_ = false;
 };
 
-// Removes, under `folder` (recursively), the temporaries of writers that were killed before they could
-// commit or clean up (".NAME.tmpPID_N.EXT"); returns how many. A missing folder has none.
+// Whether `path` is the temporary of a writer that was killed before it could commit or clean up
+// (".NAME.tmpPID_N.EXT" whose process PID no longer exists). A live writer's temporary, of this process
+// or of another command writing beside it, is not stale.
+bool IsStaleTemporary(const std::filesystem::path& path);
+
+// Removes the stale temporaries under `folder` (recursively); returns how many. A missing folder has none.
 std::size_t RemoveStaleTemporaries(const std::filesystem::path& folder);
+// Removes the stale temporaries of the one file `file` (beside it); returns how many.
+std::size_t RemoveStaleTemporariesOf(const std::filesystem::path& file);
 
 }  // namespace lutex

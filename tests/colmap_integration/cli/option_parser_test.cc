@@ -79,6 +79,15 @@ TEST(OptionParserTest, ConfigFileErrorsNameTheFileAndLine) {
               std::string::npos)
         << error.what();
   }
+  std::ofstream(config) << "# the mesh comes later\ntargets =\n";
+  try {
+    Parse({"--config", config.string()});
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_EQ(std::string(error.what()), config.string() + ":2: --targets has an empty value");
+  }
+  EXPECT_THROW(Parse({"--targets="}), std::invalid_argument);
+  EXPECT_THROW(Parse({"--targets", ""}), std::invalid_argument);
   std::ofstream(config) << "colour = red\n";
   EXPECT_THROW(Parse({"--config", config.string()}), std::invalid_argument);
   std::ofstream(config) << "z-far\n";

@@ -2,6 +2,9 @@
 // lies inside or contains one of its inputs, with one line naming both, a non-zero exit and not one byte
 // changed or added anywhere in the tree.
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -149,6 +152,55 @@ TEST(OutputPolicy, OutputsBesideTheInputsAreFine) {
       (workspace / "scene" / "mesh.ply").string() + " --output " + (workspace / "images_raycast").string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   EXPECT_TRUE(fs::exists(workspace / "images_raycast" / "depth_maps" / "frame_1.png.geometric.bin"));
+}
+
+// An output whose path runs through a file is refused before anything is read, naming the file in its
+// way (it was a raw "filesystem error: cannot create directories: Not a directory [afile/x]" after the
+// images had been read).
+TEST(OutputPolicy, AnOutputThroughAFileIsRefusedNamingTheFile) {
+  testing::TempDir dir;
+  const fs::path workspace = dir.path() / "W";
+  MakeWorkspace(workspace);
+  std::ofstream(dir.path() / "afile") << "not a folder";
+  const std::map<fs::path, std::string> before = Snapshot(dir.path());
+  for (const std::string output : {"afile/x", "afile/x/y.lut"}) {
+    const testing::CommandResult result = testing::RunCommand(
+        std::string(LUTEX_BINARY) + " raycast --workspace " + workspace.string() + " --mesh " +
+        (workspace / "scene" / "mesh.ply").string() + " --output " + (dir.path() / output).string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find((dir.path() / output).string() + ": cannot be written, " +
+                                 (dir.path() / "afile").string() + " is a file, not a folder"),
+              std::string::npos)
+        << result.output;
+    EXPECT_EQ(result.output.find("filesystem error"), std::string::npos) << result.output;
+  }
+  EXPECT_EQ(Snapshot(dir.path()), before);
+}
+
+// A killed command leaves temporaries (".NAME.tmpPID_N.EXT"); the next command writing there removes them,
+// whichever it is, and keeps those of a writer still alive (here: this test process).
+TEST(OutputPolicy, ASingleCommandRemovesWhatAKilledOneLeftInItsOutput) {
+  testing::TempDir dir;
+  const fs::path workspace = dir.path() / "W";
+  MakeWorkspace(workspace);
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  waitpid(child, nullptr, 0);  // now no process has this id
+  const fs::path output = workspace / "raycast";
+  fs::create_directories(output / "depth_maps");
+  const fs::path stale = output / "depth_maps" / (".frame_1.png.geometric.tmp" + std::to_string(child) + "_0.bin");
+  const fs::path live = output / "depth_maps" / (".frame_2.png.geometric.tmp" + std::to_string(getpid()) + "_0.bin");
+  std::ofstream(stale) << "half a depth map";
+  std::ofstream(live) << "being written";
+  const testing::CommandResult result = testing::RunCommand(
+      std::string(LUTEX_BINARY) + " raycast --workspace " + workspace.string() + " --mesh " +
+      (workspace / "scene" / "mesh.ply").string() + " --output " + output.string());
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_NE(result.output.find("removed 1 unfinished file(s) of an interrupted command at " + output.string()),
+            std::string::npos)
+      << result.output;
 }
 
 }  // namespace

@@ -1,7 +1,11 @@
 #include "lib/util/atomic_output.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <fstream>
 #include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -46,6 +50,42 @@ TEST(AtomicOutput, TemporaryKeepsTheExtension) {
   AtomicOutputFile output(dir.path() / "preview.png");
   EXPECT_EQ(output.temporary_path().extension(), ".png");
   EXPECT_THROW(output.Commit(), std::runtime_error);  // nothing written
+}
+
+// The process id of a child that has exited and been reaped: no process has it (until reused).
+pid_t DeadProcessId() {
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  waitpid(child, nullptr, 0);
+  return child;
+}
+
+// What a killed writer leaves (".NAME.tmpPID_N.EXT" of a dead process) is removed; a live writer's
+// temporaries (this process's) and files that merely look alike are kept.
+TEST(AtomicOutput, StaleTemporariesOfKilledWritersAreRemovedLiveOnesKept) {
+  testing::TempDir dir;
+  const std::string dead = std::to_string(DeadProcessId()), live = std::to_string(getpid());
+  std::filesystem::create_directories(dir.path() / "restored" / "sub");
+  const std::vector<std::string> stale = {"restored/.frame_0006.tmp" + dead + "_3.png",
+                                          "restored/sub/.frame_0007.tmp" + dead + "_0.png"};
+  const std::vector<std::string> kept = {"restored/.frame_0008.tmp" + live + "_1.png", "restored/.tmpnotes",
+                                         "restored/.frame.tmpX_1.png", "restored/frame_0006.png"};
+  for (const auto& names : {stale, kept}) {
+    for (const std::string& name : names) std::ofstream(dir.path() / name) << "bytes";
+  }
+  EXPECT_TRUE(IsStaleTemporary(dir.path() / stale[0]));
+  EXPECT_FALSE(IsStaleTemporary(dir.path() / kept[0]));
+  EXPECT_EQ(RemoveStaleTemporaries(dir.path() / "restored"), 2u);
+  for (const std::string& name : stale) EXPECT_FALSE(std::filesystem::exists(dir.path() / name)) << name;
+  for (const std::string& name : kept) EXPECT_TRUE(std::filesystem::exists(dir.path() / name)) << name;
+  EXPECT_EQ(RemoveStaleTemporaries(dir.path() / "missing"), 0u);
+
+  // Of one file: only that file's, beside it.
+  std::ofstream(dir.path() / (".lut.tmp" + dead + "_0.lut")) << "half a LUT";
+  std::ofstream(dir.path() / (".other.tmp" + dead + "_0.lut")) << "another file's";
+  EXPECT_EQ(RemoveStaleTemporariesOf(dir.path() / "lut.lut"), 1u);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / (".lut.tmp" + dead + "_0.lut")));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / (".other.tmp" + dead + "_0.lut")));
 }
 
 }  // namespace
