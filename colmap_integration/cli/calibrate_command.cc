@@ -51,8 +51,11 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
   parser.AddInt("partners", &options->correspondence_extraction.partners,
                 "Views each superpixel is matched in, at most.");
   parser.AddPath("pure-water", &options->pure_water, "Workspace of pure-water images (optional).");
+  parser.AddFlag("trust-pure-water", &options->trust_pure_water,
+                 "Use every pure-water image, also those that seem to show a surface (a warning says why).");
   parser.AddFlag("in-air", &options->calibration.in_air, "No water: backscatter fixed at 0.");
-  parser.AddString("reference-water", &options->reference_water, "Water of the weighting LUT: clear or coastal.");
+  parser.AddString("reference-water", &options->reference_water, "The water the fit starts from: clear or coastal. Its attenuations\n"
+                   "      are then fitted to the observations (README, 'The water prior'); the preset only shapes backscatter.");
   parser.AddInt("lut-nx", &options->calibration.grid.nx, "LUT cells across the image (levels: a tenth, a half, all).");
   parser.AddInt("lut-ny", &options->calibration.grid.ny, "LUT cells down the image.");
   parser.AddInt("lut-nz", &options->calibration.grid.nz, "LUT slabs in depth.");

@@ -19,6 +19,8 @@ fs::path CoverageLutPath(const fs::path& lut) { return lut.parent_path() / "cove
 
 fs::path CalibrationSummaryPath(const fs::path& lut) { return lut.parent_path() / "calibration_summary.json"; }
 
+fs::path WaterPriorPath(const fs::path& lut) { return lut.parent_path() / "water_prior.json"; }
+
 fs::path ConfidenceDirOf(const fs::path& restored) {
   fs::path confidence = restored;
   confidence += "_confidence";

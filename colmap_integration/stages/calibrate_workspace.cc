@@ -202,8 +202,12 @@ std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& 
   const std::vector<std::string> reasons = ScreenPureWaterImages(stats, options.pure_water_screening);
   std::vector<PureWaterObservation> observations;
   for (std::size_t i = 0; i < per_image.size(); ++i) {
-    if (!reasons[i].empty()) {
-      LogWarning() << paths[i].string() << ": skipped as a pure-water image, it seems to show a surface: " << reasons[i];
+    if (!reasons[i].empty() && options.trust_pure_water) {
+      LogWarning() << paths[i].string() << ": used as a pure-water image as --trust-pure-water says, although it seems "
+                   << "to show a surface: " << reasons[i];
+    } else if (!reasons[i].empty()) {
+      LogWarning() << paths[i].string() << ": skipped as a pure-water image, it seems to show a surface: " << reasons[i]
+                   << " (--trust-pure-water uses it anyway)";
       ++summary->num_pure_water_skipped;
       continue;
     }
@@ -211,7 +215,9 @@ std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& 
     ++summary->num_pure_water_images;
   }
   if (observations.empty()) {
-    throw std::runtime_error(options.pure_water.string() + ": none of its images looks like pure water");
+    throw std::runtime_error(options.pure_water.string() +
+                             ": none of its images looks like pure water (the warnings above say why; "
+                             "--trust-pure-water uses them anyway)");
   }
   return observations;
 }
@@ -228,6 +234,27 @@ void CheckSameImageSize(const Camera& targets_camera, const Camera& camera, cons
 
 // The calibration summary file beside the LUT: observation counts, residuals per constraint type,
 // levels, histograms, time.
+nlohmann::json Vector3Json(const Eigen::Vector3d& value) { return {value.x(), value.y(), value.z()}; }
+
+// The fitted water (per channel r, g, b) and the rig it was rendered with.
+nlohmann::json WaterPriorJson(const WaterPrior& prior) {
+  return {{"signal_attenuation_per_m", Vector3Json(prior.signal_attenuation)},
+          {"backscatter_attenuation_per_m", Vector3Json(prior.backscatter_attenuation)},
+          {"signal_scale", Vector3Json(prior.signal_scale)},
+          {"backscatter_scale", Vector3Json(prior.backscatter_scale)},
+          {"relative_rms", Vector3Json(prior.relative_rms)}};
+}
+
+// The fitted water and rig as a rig file (--shading-rig reads its "lights").
+void WriteWaterPrior(const WaterPrior& prior, const std::filesystem::path& path) {
+  nlohmann::json json = WaterPriorJson(prior);
+  json["comment"] =
+      "lutex calibrate: the water and rig fitted under the LUT (README, 'The water prior'). Only relative light "
+      "intensities are meaningful. Usable as a --shading-rig file.";
+  json["lights"] = LightRigToJson(prior.rig);
+  WriteFileAtomically(path, std::ios::out, [&json](std::ostream& stream) { stream << json.dump(2) << "\n"; });
+}
+
 void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationResult& result) {
   nlohmann::json json;
   json["known_color_observations"] = result.summary.num_known_color;
@@ -253,6 +280,12 @@ void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationR
       {"implausible_fraction", {restored.implausible_fraction.x(), restored.implausible_fraction.y(),
                                 restored.implausible_fraction.z()}},
       {"median_albedo", {restored.median_albedo.x(), restored.median_albedo.y(), restored.median_albedo.z()}}};
+  if (summary.water_prior) json["water_prior"] = WaterPriorJson(*summary.water_prior);
+  if (summary.albedo_span.count > 0) {
+    json["albedo_span"] = {{"lowest", Vector3Json(summary.albedo_span.lowest)},
+                           {"highest", Vector3Json(summary.albedo_span.highest)}};
+  }
+  json["warnings"] = summary.warnings;
   json["seconds"] = result.summary.seconds;
   for (const CalibrationLevelSummary& level : result.summary.levels) {
     json["levels"].push_back({{"nx", level.nx}, {"ny", level.ny},
@@ -317,18 +350,34 @@ ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedD
   return observations;
 }
 
-// The LUT of the reference water lit as shading assumes the lights (the rig, or a point light at the one
-// position), without geometry: it sets the calibration weights.
-FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, const FrustumLutGrid& grid) {
-  LightRig reference_rig = options.calibration.grid.shading.rig;
-  if (reference_rig.lights.empty()) {
-    reference_rig = PointLightAtCamera();
-    reference_rig.lights[0].position_in_cam = options.calibration.grid.shading.light_in_cam;
+// The rig shading assumes: the rig, or a point light at the one position.
+LightRig ShadingRig(const CalibrateOptions& options) {
+  LightRig rig = options.calibration.grid.shading.rig;
+  if (rig.lights.empty()) {
+    rig = PointLightAtCamera();
+    rig.lights[0].position_in_cam = options.calibration.grid.shading.light_in_cam;
   }
-  const Mesh no_geometry;
-  const Simulator reference_simulator(no_geometry, reference_rig, ReferenceWater(options),
-                                      SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
-  return reference_simulator.TrueLut(camera, grid);
+  return rig;
+}
+
+// The reference LUT (calibrator.h): in water the water prior fitted to the observations
+// (lib/calibration/water_prior.h), starting from the named water; in air the rig's light without water.
+FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, const FrustumLutGrid& grid,
+                        const ObservationSet& observations, CalibrateSummary* summary) {
+  if (options.calibration.in_air) {
+    const Mesh no_geometry;
+    const Simulator simulator(no_geometry, ShadingRig(options), Water::Air(), SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
+    return simulator.TrueLut(camera, grid);
+  }
+  WaterPriorOptions prior_options;
+  prior_options.start = ReferenceWater(options);
+  prior_options.grey_world_albedo = options.calibration.grey_world_albedo;
+  prior_options.num_threads = options.num_threads;
+  prior_options.fit_beam = options.calibration.grid.shading.rig.lights.empty();
+  WaterPrior prior = FitWaterPrior(observations, ShadingRig(options), camera, grid, prior_options);
+  FrustumLut lut = std::move(prior.lut);
+  summary->water_prior = std::move(prior);
+  return lut;
 }
 
 }  // namespace
@@ -378,7 +427,8 @@ InputsAndOutputs PathsOf(const CalibrateOptions& options, const Workspace& works
   paths.AddInput(options.mesh, "the mesh");
   AddCalibrationSources(options, &paths);
   const fs::path lut = options.output.empty() ? workspace.LutPath() : options.output;
-  for (const fs::path& output : {lut, CoverageLutPath(lut), CalibrationSummaryPath(lut), lut.parent_path() / "slabs"}) {
+  for (const fs::path& output : {lut, CoverageLutPath(lut), CalibrationSummaryPath(lut), WaterPriorPath(lut),
+                                lut.parent_path() / "slabs"}) {
     paths.AddOutput(output);
   }
   return paths;
@@ -412,10 +462,15 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   CalibrateSummary summary;
   summary.num_images = dive.model().images.size();
   const ObservationSet observations = GatherObservations(options, dive, camera, &summary);
+  summary.albedo_span = SpanOfKnownColours(observations.known_colors);
+  summary.warnings = NarrowSpanWarnings(summary.albedo_span, calibration.in_air, !observations.pure_water.empty(),
+                                        !observations.correspondences.empty());
+  for (const std::string& warning : summary.warnings) LogWarning() << warning;
   LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour, "
             << observations.correspondences.size() << " correspondence and " << observations.pure_water.size()
             << " pure-water observations";
-  const CalibrationResult result = Calibrate(observations, ReferenceLut(options, camera, calibration.grid), calibration);
+  const CalibrationResult result =
+      Calibrate(observations, ReferenceLut(options, camera, calibration.grid, observations, &summary), calibration);
 
   summary.restored_observations = RestoreObservations(result.lut, observations);
   CheckSolveIsPlausible(summary.restored_observations);
@@ -424,6 +479,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   WriteLut(result.lut, summary.lut);
   WriteLut(result.coverage, CoverageLutPath(summary.lut));
   WriteLutSlabImages(result.lut, summary.lut.parent_path() / "slabs");
+  if (summary.water_prior) WriteWaterPrior(*summary.water_prior, WaterPriorPath(summary.lut));
   WriteCalibrationSummary(summary, result);
   return summary;
 }
@@ -445,8 +501,11 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << 100 * summary.restored_observations.implausible_fraction.x() << " "
             << 100 * summary.restored_observations.implausible_fraction.y() << " "
             << 100 * summary.restored_observations.implausible_fraction.z() << " %\n"
-            << "  LUT:      " << summary.lut.string() << "\n"
-            << "  coverage: " << CoverageLutPath(summary.lut).string() << "\n";
+            << (summary.water_prior ? "  water prior: " + DescribeWaterPrior(*summary.water_prior) + "\n" : std::string());
+  for (const std::string& warning : summary.warnings) out << "  warning: " << warning << "\n";
+  out << "  LUT:      " << summary.lut.string() << "\n"
+      << "  coverage: " << CoverageLutPath(summary.lut).string() << "\n"
+      << (summary.water_prior ? "  water:    " + WaterPriorPath(summary.lut).string() + "\n" : std::string());
 }
 
 }  // namespace lutex

@@ -14,16 +14,20 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "colmap_integration/stages/loaded_dive.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "lib/calibration/albedo_span.h"
 #include "lib/calibration/survey_correspondences.h"
 #include "lib/calibration/calibrator.h"
 #include "lib/calibration/known_color_sampling.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/solve_plausibility.h"
+#include "lib/calibration/water_prior.h"
 #include "lib/image/image_io.h"
 
 namespace lutex {
@@ -48,7 +52,9 @@ struct CalibrateOptions {
   std::filesystem::path pure_water;  // optional: a workspace of pure-water images of the same camera
   std::filesystem::path output;      // the LUT file; empty: W/lutex/calibration/lut.lut
   ImageEncoding input_encoding = ImageEncoding::kSrgb8;
-  // The water of the reference LUT that sets the weights: "clear" or "coastal" (ignored in air).
+  // The water the water prior starts from (lib/calibration/water_prior.h: its single-scattering albedo
+  // and phase function shape backscatter; the attenuations are fitted): "clear" or "coastal" (ignored
+  // in air).
   std::string reference_water = "clear";
   // A light-rig file ("lights" as in a scene description, lib/model/light_rig_json.h); when given, its
   // lights replace calibration.grid.shading.rig.
@@ -56,6 +62,8 @@ struct CalibrateOptions {
   KnownColorSamplingOptions sampling;
   int pure_water_stride = 8;
   PureWaterScreeningOptions pure_water_screening;
+  // Use every pure-water image, also those the screening takes for showing a surface (still warned of).
+  bool trust_pure_water = false;
   // The fit itself, as the library takes it: grid.nx/ny/nz, z_near, z_far (the LUT grid; its image size
   // is set from the camera, its levels from nx and ny), grid.shading (how shading treats the lights: the
   // camera centre, a single flash's position or the rig; recorded in the LUT, and the reference LUT is
@@ -79,6 +87,12 @@ struct CalibrateSummary {
   // The observations restored with the fitted LUT (lib/calibration/solve_plausibility.h); a solve whose
   // observations restore to implausible albedos is refused before the LUT is written.
   RestoredObservationStats restored_observations;
+  // The known colours' albedo range per channel, and a warning per channel they span too narrowly
+  // (lib/calibration/albedo_span.h).
+  AlbedoSpan albedo_span;
+  std::vector<std::string> warnings;
+  // In water: the water fitted under the LUT (lib/calibration/water_prior.h); its lut is moved out.
+  std::optional<WaterPrior> water_prior;
 };
 
 // What calibrates from besides the workspace and its mesh (targets, boards, pure water, rig), as inputs

@@ -33,6 +33,9 @@ PureWaterImageStats MeasurePureWaterImage(const cv::Mat& linear) {
   const int height = std::max(1, static_cast<int>(std::lround(static_cast<double>(linear.rows) * width / linear.cols)));
   cv::Mat thumbnail, smooth;
   cv::resize(linear, thumbnail, cv::Size(width, height), 0, 0, cv::INTER_AREA);
+  // Isolated outliers (fireflies, hot pixels, a particle) are not a surface: a 3 x 3 median removes them
+  // and keeps edges and lines two pixels wide.
+  cv::medianBlur(cv::Mat(thumbnail), thumbnail, 3);
   cv::GaussianBlur(thumbnail, smooth, cv::Size(), width / 25.0);
   cv::Mat deviation = cv::abs(thumbnail - smooth);
   // The image's own noise level (robust: surface edges touch few pixels), per channel.
@@ -65,11 +68,16 @@ std::vector<std::string> ScreenPureWaterImages(const std::vector<PureWaterImageS
   options.Check();
   std::vector<std::string> reasons(images.size());
   if (images.empty()) return reasons;
-  Eigen::Vector3d median_mean;
+  // Open water is the darkest thing the rig can look at (a lit surface only adds light), so the
+  // brightness is judged against the darker images of the set: its lower quartile, which stays open
+  // water while up to three in four images show a surface.
+  Eigen::Vector3d reference_mean;
   for (int c = 0; c < 3; ++c) {
     std::vector<double> means;
     for (const PureWaterImageStats& image : images) means.push_back(image.mean[c]);
-    median_mean[c] = MedianInPlace(means);
+    const auto quartile = means.begin() + static_cast<long>(means.size() / 4);
+    std::nth_element(means.begin(), quartile, means.end());
+    reference_mean[c] = *quartile;
   }
   char text[160];
   for (std::size_t i = 0; i < images.size(); ++i) {
@@ -80,10 +88,10 @@ std::vector<std::string> ScreenPureWaterImages(const std::vector<PureWaterImageS
       continue;
     }
     for (int c = 0; c < 3; ++c) {
-      const double limit = options.max_brightness_ratio * median_mean[c] + 0.002;
+      const double limit = options.max_brightness_ratio * reference_mean[c] + 0.002;
       if (images[i].mean[c] > limit) {
-        std::snprintf(text, sizeof(text), "%.0f times brighter than the median pure-water image",
-                      images[i].mean[c] / std::max(median_mean[c], 1e-6));
+        std::snprintf(text, sizeof(text), "%.0f times brighter than the darker pure-water images",
+                      images[i].mean[c] / std::max(reference_mean[c], 1e-6));
         reasons[i] = text;
         break;
       }

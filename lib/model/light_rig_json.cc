@@ -57,6 +57,28 @@ LightRig ParseLightRig(const json& root) {
   return rig;
 }
 
+json LightRigToJson(const LightRig& rig) {
+  json lights = json::array();
+  for (const Light& light : rig.lights) {
+    json object = {{"position", {light.position_in_cam.x(), light.position_in_cam.y(), light.position_in_cam.z()}},
+                   {"direction", {light.direction_in_cam.x(), light.direction_in_cam.y(), light.direction_in_cam.z()}},
+                   {"intensity", {light.intensity.x(), light.intensity.y(), light.intensity.z()}},
+                   {"profile", BeamProfileName(light.profile)}};
+    if (!light.name.empty()) object["name"] = light.name;
+    switch (light.profile) {
+      case BeamProfile::kIsotropic: break;
+      case BeamProfile::kCosinePower: object["exponent"] = light.exponent; break;
+      case BeamProfile::kGaussian: object["sigma_deg"] = light.sigma_rad * 180.0 / M_PI; break;
+      case BeamProfile::kCyclesSpot:
+        object["spot_size_deg"] = light.spot_size_rad * 180.0 / M_PI;
+        object["spot_blend"] = light.spot_blend;
+        break;
+    }
+    lights.push_back(object);
+  }
+  return lights;
+}
+
 LightRig ReadLightRig(const std::filesystem::path& path) {
   return ReadJsonFile(path, "light rig", [](const json& root, const std::filesystem::path&) {
     return ParseLightRig(root);

@@ -25,4 +25,7 @@ LightRig ParseLightRig(const nlohmann::json& root);
 // Throws std::runtime_error naming the file and the key.
 LightRig ReadLightRig(const std::filesystem::path& path);
 
+// The rig as the "lights" array ParseLightRig reads back (intensity per channel, the profile's own keys).
+nlohmann::json LightRigToJson(const LightRig& rig);
+
 }  // namespace lutex

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -25,38 +26,43 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(BlenderCalibration, ColorCheckerPatchesFromBoardsAndPureWater) {
-  const auto dev = testing::SharedDevDatasets();
-  if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
-  testing::TempDir dir;
+// Calibrates from a water's two colour boards and its pure water, shading with the metadata's rig
+// (lutex calibrate --shading-rig), into `dir`.
+CalibrateSummary CalibrateFromBoards(const fs::path& dev, const std::string& water, const fs::path& dir) {
   CalibrateOptions calibrate;
-  calibrate.workspace = *dev / "calib_boards_clear";
-  // Shading with the rig of the metadata (two spots at +-0.4 m): lutex calibrate --shading-rig.
+  calibrate.workspace = dev / ("calib_boards_" + water);
   calibrate.calibration.grid.shading.rig = testing::LoadBlenderDataset(calibrate.workspace).rig;
   calibrate.mesh = calibrate.workspace / "scene" / "mesh.ply";
   calibrate.targets = calibrate.workspace / "metadata.json";
-  calibrate.pure_water = *dev / "purewater_clear";
+  calibrate.pure_water = dev / ("purewater_" + water);
   calibrate.input_encoding = ImageEncoding::kLinear16;
   calibrate.calibration.grid.z_near = 0.4;
   calibrate.calibration.grid.z_far = 3.0;
-  calibrate.output = dir.path() / "calibration" / "lut.lut";
-  const CalibrateSummary calibrated = CalibrateWorkspace(calibrate);
+  calibrate.output = dir / "calibration" / "lut.lut";
+  return CalibrateWorkspace(calibrate);
+}
 
-  RestoreOptions restore;
-  restore.workspace = *dev / "checker_clear";
-  restore.mesh = restore.workspace / "scene" / "mesh.ply";
-  restore.lut = calibrated.lut;
-  restore.input_encoding = ImageEncoding::kLinear16;
-  restore.output = dir.path() / "restored";
-  RestoreWorkspace(restore);
-
+// The ColorChecker frames of `checker` restored with `lut` (or, without one, the raw images): the error of
+// every patch and channel, sorted.
+std::vector<double> SortedPatchErrors(const fs::path& checker, const fs::path& lut, const fs::path& dir) {
+  fs::path images = checker / "images";
+  if (!lut.empty()) {
+    RestoreOptions restore;
+    restore.workspace = checker;
+    restore.mesh = checker / "scene" / "mesh.ply";
+    restore.lut = lut;
+    restore.input_encoding = ImageEncoding::kLinear16;
+    restore.output = dir / "restored";
+    RestoreWorkspace(restore);
+    images = restore.output;
+  }
   std::vector<double> errors;
-  for (const auto& [id, image] : ReadSparseModel(restore.workspace / "sparse" / "0").images) {
+  for (const auto& [id, image] : ReadSparseModel(checker / "sparse" / "0").images) {
     const std::string stem = fs::path(image.name).stem().string();
-    const cv::Mat restored = ReadLinearImage(restore.output / image.name, ImageEncoding::kLinear16);
-    const cv::Mat truth = ReadLinearImage(restore.workspace / "gt" / "albedo" / (stem + ".exr"), ImageEncoding::kFloat);
-    const cv::Mat regions = cv::imread((restore.workspace / "gt" / "region_id" / (stem + ".png")).string(), cv::IMREAD_UNCHANGED);
-    ASSERT_FALSE(regions.empty());
+    const cv::Mat restored = ReadLinearImage(images / image.name, ImageEncoding::kLinear16);
+    const cv::Mat truth = ReadLinearImage(checker / "gt" / "albedo" / (stem + ".exr"), ImageEncoding::kFloat);
+    const cv::Mat regions = cv::imread((checker / "gt" / "region_id" / (stem + ".png")).string(), cv::IMREAD_UNCHANGED);
+    EXPECT_FALSE(regions.empty());
     for (int patch = 1; patch <= 24; ++patch) {
       cv::Mat inner = regions == patch;
       cv::erode(inner, inner, cv::Mat());  // inner pixels: one pixel off the patch border
@@ -65,14 +71,61 @@ TEST(BlenderCalibration, ColorCheckerPatchesFromBoardsAndPureWater) {
       for (int c = 0; c < 3; ++c) errors.push_back(100.0 * std::abs(restored_mean[c] - true_mean[c]));
     }
   }
-  ASSERT_GT(errors.size(), 100u);
   std::sort(errors.begin(), errors.end());
+  return errors;
+}
+
+// The water prior measures the water (lib/calibration/water_prior.h): its signal attenuation must lie
+// where physics puts it, between a + b (1 - g) (all forward-scattered light returned to the direct path)
+// and a + b (none), from the metadata's coefficients.
+void ExpectPhysicalSignalAttenuation(const CalibrateSummary& calibrated, const testing::BlenderDataset& dataset) {
+  ASSERT_TRUE(calibrated.water_prior.has_value());
+  const Eigen::Vector3d a = dataset.water.absorption, b = dataset.water.scattering;
+  const Eigen::Vector3d lowest = a + b * (1.0 - dataset.water.anisotropy_g), highest = a + b;
+  const Eigen::Vector3d fitted = calibrated.water_prior->signal_attenuation;
+  std::printf("%s: signal attenuation %.3f %.3f %.3f per m, physical range [%.3f %.3f %.3f] .. [%.3f %.3f %.3f]\n",
+              dataset.root.filename().c_str(), fitted.x(), fitted.y(), fitted.z(), lowest.x(), lowest.y(), lowest.z(),
+              highest.x(), highest.y(), highest.z());
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GE(fitted[c], lowest[c] - 0.01) << "channel " << c;
+    EXPECT_LE(fitted[c], highest[c] + 0.01) << "channel " << c;
+  }
+}
+
+TEST(BlenderCalibration, ColorCheckerPatchesFromBoardsAndPureWater) {
+  const auto dev = testing::SharedDevDatasets();
+  if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
+  testing::TempDir dir;
+  const CalibrateSummary calibrated = CalibrateFromBoards(*dev, "clear", dir.path());
+  ExpectPhysicalSignalAttenuation(calibrated, testing::LoadBlenderDataset(*dev / "calib_boards_clear"));
+  const std::vector<double> errors = SortedPatchErrors(*dev / "checker_clear", calibrated.lut, dir.path());
+  ASSERT_GT(errors.size(), 100u);
   const double median = errors[errors.size() / 2], p90 = errors[errors.size() * 9 / 10], worst = errors.back();
   std::printf("checker_clear: %zu patch-channels, median %.2f, p90 %.2f, worst %.2f (residual RMS %.4f %.4f %.4f)\n",
               errors.size(), median, p90, worst, calibrated.calibration.known_color_rms.x(),
               calibrated.calibration.known_color_rms.y(), calibrated.calibration.known_color_rms.z());
   EXPECT_LE(median, 3.0);  // the bars
   EXPECT_LE(worst, 10.0);
+}
+
+// In turbid water (calib_boards_turbid, purewater_turbid, checker_turbid) the pure-water frames must now
+// be accepted (before, every one was rejected for its fireflies), the water measured, and the restored
+// ColorChecker far better than the raw images (tools' README: raw median 17.7, worst 89.0 with an oracle
+// gain per channel).
+TEST(BlenderCalibration, TurbidWaterIsMeasuredAndTheColorCheckerRestored) {
+  const auto dev = testing::SharedDevDatasets();
+  if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
+  testing::TempDir dir;
+  const CalibrateSummary calibrated = CalibrateFromBoards(*dev, "turbid", dir.path());
+  EXPECT_EQ(calibrated.num_pure_water_skipped, 0u);
+  ExpectPhysicalSignalAttenuation(calibrated, testing::LoadBlenderDataset(*dev / "calib_boards_turbid"));
+  const std::vector<double> errors = SortedPatchErrors(*dev / "checker_turbid", calibrated.lut, dir.path());
+  ASSERT_GT(errors.size(), 100u);
+  std::printf("checker_turbid: median %.2f, p90 %.2f, worst %.2f\n", errors[errors.size() / 2],
+              errors[errors.size() * 9 / 10], errors.back());
+  EXPECT_LE(errors[errors.size() / 2], 5.0);  // the turbid goal for the median
+  // The goal for the worst patch, 20, is not reached (README: forward-scatter blur); raw is 89.
+  EXPECT_LE(errors.back(), 60.0);
 }
 
 // In air (inair_whiteboard): calibrate from the white board (albedo 0.8) with one known colour, beta held

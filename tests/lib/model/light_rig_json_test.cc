@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "tests/support/temp_dir.h"
 
@@ -33,6 +34,37 @@ TEST(LightRigJson, ReadsEveryProfileWithItsParametersInSiUnits) {
   EXPECT_TRUE(starboard.intensity.isApprox(Eigen::Vector3d(1, 2, 3)));
   EXPECT_EQ(starboard.profile, BeamProfile::kGaussian);
   EXPECT_NEAR(starboard.sigma_rad, M_PI / 6, 1e-12);
+}
+
+// What calibrate writes (water_prior.json) is what --shading-rig reads back, every profile with its
+// parameters.
+TEST(LightRigJson, AWrittenRigReadsBackAsItWas) {
+  LightRig rig;
+  for (BeamProfile profile : {BeamProfile::kIsotropic, BeamProfile::kCosinePower, BeamProfile::kGaussian,
+                              BeamProfile::kCyclesSpot}) {
+    Light light;
+    light.name = BeamProfileName(profile);
+    light.position_in_cam = Eigen::Vector3d(0.1 * rig.lights.size(), -0.2, 0.05);
+    light.direction_in_cam = Eigen::Vector3d(0.1, 0, 1).normalized();
+    light.intensity = Eigen::Vector3d(1, 2, 3);
+    light.profile = profile;
+    light.exponent = 3.0;
+    light.sigma_rad = 0.4;
+    light.spot_size_rad = 1.5;
+    light.spot_blend = 0.3;
+    rig.lights.push_back(light);
+  }
+  const LightRig back = ParseLightRig(nlohmann::json{{"lights", LightRigToJson(rig)}});
+  ASSERT_EQ(back.lights.size(), rig.lights.size());
+  for (std::size_t l = 0; l < rig.lights.size(); ++l) {
+    const Light &a = rig.lights[l], &b = back.lights[l];
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.profile, a.profile);
+    EXPECT_TRUE(b.position_in_cam.isApprox(a.position_in_cam));
+    EXPECT_TRUE(b.direction_in_cam.isApprox(a.direction_in_cam));
+    EXPECT_TRUE(b.intensity.isApprox(a.intensity));
+    for (double cos_psi : {1.0, 0.9, 0.7, 0.3}) EXPECT_NEAR(b.Profile(cos_psi), a.Profile(cos_psi), 1e-12) << l;
+  }
 }
 
 TEST(LightRigJson, ErrorsNameTheFileAndTheKeyPath) {
