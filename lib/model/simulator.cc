@@ -104,7 +104,6 @@ cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backsc
   map_options.num_threads = options_.num_threads;
   const GeometryMaps maps = RenderGeometry(rays, cam_from_world, map_options);
   const Rigid3d world_from_cam = cam_from_world.Inverse();
-  const Eigen::Matrix3d cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix();
   cv::Mat radiance(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(0));
   ParallelFor(static_cast<std::size_t>(rays.height()), options_.num_threads, [&](std::size_t row_index) {
     const int row = static_cast<int>(row_index);
@@ -120,16 +119,8 @@ cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backsc
         const Eigen::Vector3d point = range * direction;
         const int face = maps.face_id.at<int>(row, col);
         const cv::Vec2f b = maps.barycentrics.at<cv::Vec2f>(row, col);
-        const cv::Vec3f geometric = maps.normal.at<cv::Vec3f>(row, col);
-        Eigen::Vector3d normal(geometric[0], geometric[1], geometric[2]);
-        if (!mesh_.vertex_normals.empty()) {
-          const Mesh::Face& corners = mesh_.faces[face];
-          const Eigen::Vector3d interpolated = (1.0 - b[0] - b[1]) * mesh_.vertex_normals[corners[0]].cast<double>() +
-                                               b[0] * mesh_.vertex_normals[corners[1]].cast<double>() +
-                                               b[1] * mesh_.vertex_normals[corners[2]].cast<double>();
-          normal = (cam_from_world_rotation * interpolated).normalized();
-          if (normal.dot(direction) > 0.0) normal = -normal;
-        }
+        const cv::Vec3f shading = maps.normal.at<cv::Vec3f>(row, col);  // smooth where the mesh has normals
+        const Eigen::Vector3d normal(shading[0], shading[1], shading[2]);
         const Eigen::Vector3d albedo = albedo_.At(mesh_, face, b[0], b[1]);
         Eigen::Array3d irradiance = Eigen::Array3d::Zero();
         for (const Light& light : rig_.lights) {

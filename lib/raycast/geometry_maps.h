@@ -9,8 +9,11 @@ namespace lutex {
 struct GeometryMaps {
   // Planar depth z in the camera frame (scene units), CV_32F; NaN where the ray hits nothing.
   cv::Mat depth;
-  // Unit geometric normal in the camera frame, facing the camera (n . ray < 0), CV_32FC3 as (x, y, z);
-  // NaN where nothing is hit. Empty when not requested.
+  // Unit shading normal in the camera frame, CV_32FC3 as (x, y, z): the mesh's vertex normals
+  // interpolated at the hit where it has them (photogrammetry meshes do), else the face's geometric
+  // normal; on the side the face is seen from (the geometric normal faces the camera, n . ray < 0; a
+  // smooth one may face slightly away near a silhouette). NaN where nothing is hit. Empty when not
+  // requested.
   cv::Mat normal;
   // Index of the hit face in the mesh, CV_32S; -1 where nothing is hit. Always produced (ray casting
   // works on it).

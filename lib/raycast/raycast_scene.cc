@@ -44,6 +44,7 @@ struct RaycastScene::Impl {
   // The mesh in double precision relative to `origin`, for analytic plane intersections.
   std::vector<Eigen::Vector3d> local_vertices;
   std::vector<Mesh::Face> faces;
+  std::vector<Eigen::Vector3f> vertex_normals;  // the mesh's, world frame; empty when it has none
   std::mutex error_mutex;
   std::string first_error;
 
@@ -94,6 +95,7 @@ RaycastScene::RaycastScene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     throw std::runtime_error("Embree failed to allocate the mesh buffers");
   }
   impl_->faces = mesh.faces;
+  impl_->vertex_normals = mesh.vertex_normals;
   impl_->local_vertices.reserve(mesh.vertices.size());
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     impl_->local_vertices.push_back(mesh.vertices[i] - impl_->origin);
@@ -204,11 +206,13 @@ struct FacePlane {
 class PoseRenderer {
  public:
   PoseRenderer(RTCScene scene, const Eigen::Vector3d& scene_origin, const std::vector<Eigen::Vector3d>& local_vertices,
-               const std::vector<Mesh::Face>& faces, const CameraRays& rays, const Rigid3d& cam_from_world,
-               const GeometryMapsOptions& options, GeometryMaps* maps)
+               const std::vector<Mesh::Face>& faces, const std::vector<Eigen::Vector3f>& vertex_normals,
+               const CameraRays& rays, const Rigid3d& cam_from_world, const GeometryMapsOptions& options,
+               GeometryMaps* maps)
       : scene_(scene),
         local_vertices_(local_vertices),
         faces_(faces),
+        vertex_normals_(vertex_normals),
         rays_(rays),
         options_(options),
         maps_(*maps),
@@ -283,11 +287,28 @@ class PoseRenderer {
     const Eigen::Vector3f& direction_in_cam = rays_.Direction(col, row);
     maps_.depth.at<float>(row, col) = hit.distance * direction_in_cam.z();
     if (options_.normal) {
-      Eigen::Vector3f normal_in_cam = hit.unit_normal_in_cam;
-      if (normal_in_cam.dot(direction_in_cam) > 0.0f) normal_in_cam = -normal_in_cam;
+      Eigen::Vector3f facing = hit.unit_normal_in_cam;
+      if (facing.dot(direction_in_cam) > 0.0f) facing = -facing;
+      // The smooth normal on the side the face is seen from (near a silhouette it may face away from the
+      // ray itself, as the surface it stands for does).
+      Eigen::Vector3f normal_in_cam = ShadingNormal(hit);
+      if (normal_in_cam.dot(facing) < 0.0f) normal_in_cam = -normal_in_cam;
       maps_.normal.at<cv::Vec3f>(row, col) = cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
     }
     if (options_.barycentrics) maps_.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(hit.b1, hit.b2);
+  }
+
+  // The mesh's vertex normals interpolated at the hit (photogrammetry meshes carry smooth normals; the
+  // facets' own normals would shade a curved surface in facets), else the face's normal; either
+  // orientation.
+  Eigen::Vector3f ShadingNormal(const PixelHit& hit) const {
+    if (vertex_normals_.empty()) return hit.unit_normal_in_cam;
+    const Mesh::Face& corners = faces_[static_cast<std::size_t>(hit.face)];
+    const Eigen::Vector3f in_world = (1.0f - hit.b1 - hit.b2) * vertex_normals_[corners[0]] +
+                                     hit.b1 * vertex_normals_[corners[1]] + hit.b2 * vertex_normals_[corners[2]];
+    const float length = in_world.norm();
+    if (!(length > 1e-6f) || !std::isfinite(length)) return hit.unit_normal_in_cam;  // opposed corner normals
+    return cam_from_world_rotation_ * (in_world / length);
   }
 
   // Casts up to 16 pixels as one packet and writes what they hit.
@@ -422,6 +443,7 @@ class PoseRenderer {
   RTCScene scene_;
   const std::vector<Eigen::Vector3d>& local_vertices_;
   const std::vector<Mesh::Face>& faces_;
+  const std::vector<Eigen::Vector3f>& vertex_normals_;
   const CameraRays& rays_;
   const GeometryMapsOptions& options_;
   GeometryMaps& maps_;
@@ -447,8 +469,8 @@ void RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
   if (!cam_from_world.IsValid()) {
     throw std::invalid_argument("pose for ray casting is not finite or its quaternion is not unit");
   }
-  PoseRenderer renderer(impl_->scene, impl_->origin, impl_->local_vertices, impl_->faces, rays, cam_from_world,
-                        options, output);
+  PoseRenderer renderer(impl_->scene, impl_->origin, impl_->local_vertices, impl_->faces, impl_->vertex_normals,
+                        rays, cam_from_world, options, output);
   renderer.CastSamples(options.adaptive ? 2 : 1);
   if (options.adaptive) renderer.FillBetweenSamples();
 }

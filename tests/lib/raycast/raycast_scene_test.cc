@@ -1,6 +1,7 @@
 #include "lib/raycast/raycast_scene.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -137,6 +138,40 @@ TEST(RaycastScene, SphereDepthAndNormalMatchAnalyticSphere) {
     }
   }
   EXPECT_GT(hits, 1000);
+}
+
+// A coarse sphere (15-degree facets) with radial vertex normals shades smoothly: the normal map follows
+// the sphere through the point hit, where the facets' own normals are off by up to half a facet.
+TEST(RaycastScene, VertexNormalsGiveSmoothShadingNormals) {
+  Mesh sphere = MakeSphereMesh(Eigen::Vector3d::Zero(), 1.0, 12, 24);
+  const Camera camera = Camera::Pinhole(1, 80, 80, 80, 80);
+  const Rigid3d cam_from_world(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0, 0, 3));
+  const auto mean_angle_to_the_sphere = [&](const Mesh& mesh) {
+    const RaycastScene scene(mesh);
+    const GeometryMaps maps = scene.Render(CameraRays(camera), cam_from_world);
+    double sum = 0.0;
+    int count = 0;
+    for (int row = 0; row < 80; ++row) {
+      for (int col = 0; col < 80; ++col) {
+        const float z = maps.depth.at<float>(row, col);
+        if (std::isnan(z)) continue;
+        const Eigen::Vector3d point_in_cam = z * camera.CamFromImg(Eigen::Vector2d(col + 0.5, row + 0.5));
+        const Eigen::Vector3d radial = (point_in_cam - Eigen::Vector3d(0, 0, 3)).normalized();  // sphere centre
+        if (radial.z() > -0.5) continue;  // away from the silhouette (at radial.z = -0.33)
+        const cv::Vec3f n = maps.normal.at<cv::Vec3f>(row, col);
+        sum += std::acos(std::min(1.0, radial.dot(Eigen::Vector3d(n[0], n[1], n[2])))) * 180.0 / M_PI;
+        ++count;
+      }
+    }
+    EXPECT_GT(count, 1000);
+    return sum / count;
+  };
+  const double faceted = mean_angle_to_the_sphere(sphere);
+  for (const Eigen::Vector3d& vertex : sphere.vertices) sphere.vertex_normals.push_back(vertex.normalized().cast<float>());
+  const double smooth = mean_angle_to_the_sphere(sphere);
+  std::printf("mean angle to the sphere's normal: faceted %.2f deg, vertex normals %.2f deg\n", faceted, smooth);
+  EXPECT_GT(faceted, 2.0);
+  EXPECT_LT(smooth, 0.5);
 }
 
 // Same maps, bit for bit, at any thread count.
