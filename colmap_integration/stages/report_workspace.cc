@@ -200,7 +200,17 @@ void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs:
       for (std::size_t c = 0; c < 3; ++c) html << (c ? " / " : "") << level.at("final_cost")[c].get<double>();
       html << std::fixed << "</td></tr>";
     }
+    if (summary.contains("water_prior")) {
+      const auto& prior = summary.at("water_prior");
+      html << "<tr><td>water prior: attenuation of the signal, per m (R / G / B)</td><td>"
+           << Vector(prior.at("signal_attenuation_per_m"), 3) << "</td></tr>"
+           << "<tr><td>water prior: attenuation of backscatter, per m (R / G / B)</td><td>"
+           << Vector(prior.at("backscatter_attenuation_per_m"), 3) << "</td></tr>";
+    }
     html << "</table>\n";
+    for (const auto& warning : summary.value("warnings", nlohmann::json::array())) {
+      html << "<p class=\"warning\">" << Escape(warning.get<std::string>()) << "</p>\n";
+    }
     if (summary.contains("residual_histograms")) {
       const auto& histograms = summary.at("residual_histograms");
       html << "<h3>Residuals after the solve</h3><p>Per channel (red, green, blue, translucent), counts in bins; the "
@@ -332,7 +342,7 @@ ReportSummary WriteReport(const ReportOptions& options) {
        << Escape(workspace.root.filename().string()) << "</title>\n<style>\n"
        << "body{font-family:sans-serif;margin:2em;max-width:1400px;color:#222}h1{margin-bottom:0}"
           "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #ccc;padding:4px 8px;vertical-align:top;"
-          "text-align:left}pre{margin:0;white-space:pre-wrap;font-size:12px}.missing{color:#a33}"
+          "text-align:left}pre{margin:0;white-space:pre-wrap;font-size:12px}.missing{color:#a33}.warning{color:#8a5a00}"
           ".row{display:flex;flex-wrap:wrap;gap:1em}figure{margin:0}figcaption{font-size:13px;text-align:center}"
           ".slabs td{padding:2px}.slabs img{display:block}img{max-width:100%}\n"
        << "</style></head><body>\n<h1>lutex report</h1>\n<p>Workspace " << Escape(fs::absolute(workspace.root).string())

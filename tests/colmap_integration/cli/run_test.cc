@@ -277,7 +277,8 @@ TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
     EXPECT_TRUE(validation.valid) << validation.output;
   }
   const std::string report = ReadBytes(workspace / "lutex" / "report" / "index.html");
-  for (const char* part : {"<h2>Run</h2>", "<h2>Calibration</h2>", "The LUT", "<h2>Restoration</h2>", "<h2>Texture</h2>",
+  for (const char* part : {"<h2>Run</h2>", "<h2>Calibration</h2>", "water prior: attenuation of the signal", "The LUT",
+                           "<h2>Restoration</h2>", "<h2>Texture</h2>",
                            "data:image/png;base64,", "data:image/jpeg;base64,", "<svg"}) {
     EXPECT_NE(report.find(part), std::string::npos) << part;
   }
