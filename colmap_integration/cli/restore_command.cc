@@ -36,6 +36,10 @@ int RunRestoreCommand(int argc, char** argv) {
 }
 
 void AddRestoreStageOptions(OptionParser& parser, RestoreOptions* options) {
+  parser.AddFlag("skip-bad-images", &options->skip_bad_images,
+                 "Skip images that cannot be read (wrong size or depth, corrupt, truncated) and list them;\n"
+                 "      without it the first one stops restore, naming it, before anything is written where\n"
+                 "      its header shows the fault.");
   parser.AddFlag("no-coverage", &options->ignore_coverage, "Ignore the LUT's coverage in the confidence maps.");
   parser.AddString("output-encoding", &options->output_encoding, "Restored images: same (as the input), srgb8, linear16 or float.");
 }

@@ -9,6 +9,7 @@
 
 #include "colmap_integration/io/confidence_map_io.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "lib/image/image_header.h"
 #include "lib/raycast/images_by_camera.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
@@ -134,8 +135,28 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
     return std::vector<fs::path>{RestoredImagePath(summary.output, image.name, output_encoding),
                                  ConfidenceMapPath(summary.confidence_output, image.name)};
   };
-  const SparseModel todo = options.skip_done ? WithoutDoneImages(model, outputs_of) : model;
+  SparseModel todo = options.skip_done ? WithoutDoneImages(model, outputs_of) : model;
   summary.num_skipped = model.images.size() - todo.images.size();
+  // Every image's header before the first write: a bad file anywhere stops the command here, with
+  // nothing written (or is skipped, with skip_bad_images).
+  std::mutex bad_mutex;
+  const auto skip_or_throw = [&](const std::runtime_error& error) {
+    if (!options.skip_bad_images) throw error;
+    LogWarning() << error.what() << "; skipped (--skip-bad-images)";
+    std::lock_guard<std::mutex> lock(bad_mutex);
+    summary.bad_images.push_back(error.what());
+  };
+  for (auto it = todo.images.begin(); it != todo.images.end();) {
+    const Camera& camera = todo.cameras.at(it->second.camera_id);
+    try {
+      CheckImageHeader(workspace.images_dir / it->second.name, static_cast<int>(camera.width),
+                       static_cast<int>(camera.height), options.input_encoding);
+      ++it;
+    } catch (const std::runtime_error& error) {
+      skip_or_throw(error);
+      it = todo.images.erase(it);
+    }
+  }
   double confidence_sum = 0.0;
   std::size_t surface_pixels = 0;
   std::mutex summary_mutex;
@@ -145,11 +166,17 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
                        [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int worker) {
     RestoredImage& restored = worker_outputs[static_cast<std::size_t>(worker)];
     const fs::path input = workspace.images_dir / image.name;
-    const cv::Mat observed = ReadLinearImage(input, options.input_encoding);
-    if (observed.cols != rays.width() || observed.rows != rays.height()) {
-      throw std::runtime_error(input.string() + ": the image is " + std::to_string(observed.cols) + "x" +
-                               std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
-                               "x" + std::to_string(rays.height()));
+    cv::Mat observed;
+    try {
+      observed = ReadLinearImage(input, options.input_encoding);
+      if (observed.cols != rays.width() || observed.rows != rays.height()) {
+        throw std::runtime_error(input.string() + ": the image is " + std::to_string(observed.cols) + "x" +
+                                 std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
+                                 "x" + std::to_string(rays.height()));
+      }
+    } catch (const std::runtime_error& error) {
+      skip_or_throw(error);  // unreadable pixels behind a sound header (a truncated file)
+      return;
     }
     RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr, &restored);
     const std::vector<fs::path> outputs = outputs_of(image);
@@ -174,6 +201,10 @@ void PrintRestoreSummary(std::ostream& out, const RestoreSummary& summary) {
             << "  confidence maps:  " << summary.confidence_output.string() << "\n"
             << "  LUT coverage:     " << (summary.coverage.empty() ? std::string("not used") : summary.coverage.string())
             << "\n";
+  if (!summary.bad_images.empty()) {
+    out << "  skipped as unreadable (--skip-bad-images): " << summary.bad_images.size() << " image(s)\n";
+    for (const std::string& bad : summary.bad_images) out << "    " << bad << "\n";
+  }
 }
 
 }  // namespace lutex

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "colmap_integration/stages/loaded_dive.h"
 #include "lib/image/image_io.h"
@@ -43,6 +44,10 @@ struct RestoreOptions {
   // Leave images alone whose restored image and confidence map both exist (lutex run resumes so; files
   // are written under temporary names and renamed, so an existing one is whole).
   bool skip_done = false;
+  // An image that cannot be read (its header before the first write: size, channels, bit depth; or its
+  // pixels mid-run) stops the command by default, naming it, with every output written so far complete.
+  // With skip_bad_images it is skipped and listed in the summary instead.
+  bool skip_bad_images = false;
 
   void Check() const;
 };
@@ -53,6 +58,7 @@ struct RestoreSummary {
   std::filesystem::path confidence_output;
   std::size_t num_images = 0;   // restored now
   std::size_t num_skipped = 0;  // already done (skip_done)
+  std::vector<std::string> bad_images;  // "path: what is wrong", skipped (skip_bad_images)
   double mean_confidence = 0.0;  // over pixels with a surface, all channels, of the images restored now
   double seconds = 0.0;
 };

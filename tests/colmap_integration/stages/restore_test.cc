@@ -149,5 +149,81 @@ TEST(Restore, MissingImageIsAnErrorBeforeAnythingIsWritten) {
   EXPECT_FALSE(fs::exists(workspace / "lutex"));
 }
 
+// Files the restored images of `workspace` are written as (temporaries included).
+std::vector<fs::path> RestoredFiles(const fs::path& workspace) {
+  std::vector<fs::path> files;
+  if (!fs::exists(workspace / "lutex")) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(workspace / "lutex")) {
+    if (entry.is_regular_file()) files.push_back(entry.path().filename());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// A wrong-size, wrong-depth or not-an-image file among the images stops restore before its first write,
+// naming the file (its header shows it); with skip_bad_images the others are restored and it is listed.
+TEST(Restore, AnImageWhoseHeaderIsWrongStopsRestoreBeforeAnythingIsWritten) {
+  testing::TempDir dir;
+  const fs::path workspace = Simulated(dir.path());
+  const std::vector<std::pair<std::string, std::string>> faults = {
+      {"wrong size", "frame_0003.png: the image is 20x10 but its camera is 200x150"},
+      {"wrong depth", "frame_0003.png: the image has 8-bit samples but the encoding is linear16"},
+      {"truncated header", "frame_0003.png: not a readable PNG image (truncated header)"}};
+  const fs::path bad = workspace / "images" / "frame_0003.png";
+  const cv::Mat original = cv::imread(bad.string(), cv::IMREAD_UNCHANGED);
+  for (const auto& [fault, message] : faults) {
+    if (fault == "wrong size") cv::imwrite(bad.string(), cv::Mat(10, 20, CV_16UC3, cv::Scalar::all(1000)));
+    if (fault == "wrong depth") cv::imwrite(bad.string(), cv::Mat(150, 200, CV_8UC3, cv::Scalar::all(100)));
+    if (fault == "truncated header") {
+      cv::imwrite(bad.string(), original);
+      fs::resize_file(bad, 20);
+    }
+    try {
+      RestoreWorkspace(OptionsFor(workspace));
+      FAIL() << fault;
+    } catch (const std::runtime_error& error) {
+      EXPECT_NE(std::string(error.what()).find(message), std::string::npos) << fault << ": " << error.what();
+    }
+    EXPECT_TRUE(RestoredFiles(workspace).empty()) << fault;
+  }
+  RestoreOptions options = OptionsFor(workspace);
+  options.skip_bad_images = true;
+  const RestoreSummary summary = RestoreWorkspace(options);
+  EXPECT_EQ(summary.num_images, 7u);
+  ASSERT_EQ(summary.bad_images.size(), 1u);
+  EXPECT_NE(summary.bad_images[0].find("frame_0003.png: not a readable PNG image"), std::string::npos);
+  EXPECT_FALSE(fs::exists(workspace / "lutex" / "restored" / "frame_0003.png"));
+  EXPECT_TRUE(fs::exists(workspace / "lutex" / "restored" / "frame_0004.png"));
+}
+
+// A file whose header is sound but whose pixels are cut off is found only when decoded: restore stops
+// there naming it, every output written before it complete (no temporaries), or skips it when asked.
+TEST(Restore, AnImageTruncatedBehindItsHeaderStopsRestoreWithCompleteOutputs) {
+  testing::TempDir dir;
+  const fs::path workspace = Simulated(dir.path());
+  const fs::path bad = workspace / "images" / "frame_0005.png";
+  fs::resize_file(bad, fs::file_size(bad) / 2);
+  RestoreOptions options = OptionsFor(workspace);
+  options.num_threads = 1;
+  try {
+    RestoreWorkspace(options);
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("frame_0005.png: not a readable image"), std::string::npos) << error.what();
+  }
+  for (const fs::path& file : RestoredFiles(workspace)) {
+    EXPECT_EQ(file.string().find(".tmp"), std::string::npos) << file;
+    EXPECT_NE(file.string().find("frame_000"), std::string::npos) << file;
+    if (file.extension() == ".png" && fs::exists(workspace / "lutex" / "restored" / file)) {
+      EXPECT_FALSE(ReadLinearImage(workspace / "lutex" / "restored" / file, ImageEncoding::kLinear16).empty());
+    }
+  }
+  options.skip_bad_images = true;
+  const RestoreSummary summary = RestoreWorkspace(options);
+  EXPECT_EQ(summary.num_images, 7u);
+  ASSERT_EQ(summary.bad_images.size(), 1u);
+  EXPECT_NE(summary.bad_images[0].find("frame_0005.png"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace lutex
