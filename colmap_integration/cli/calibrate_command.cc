@@ -71,7 +71,11 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
                    "      (positions, axes, beam profiles, powers). Shading then weighs each light by the irradiance\n"
                    "      it gives the point, so alpha no longer depends on the surface's tilt where one light\n"
                    "      dominates (README, 'Shading'). Replaces --shading-light; recorded in the LUT.");
-  parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
+  parser.AddFlag("fit-rig", &options->fit_rig,
+                 "Without --shading-rig, in water: fit the rig (lights beside the camera, beams) to the\n"
+                 "      observations and shade with it, as if given (README, 'The water prior'); recorded in the\n"
+                 "      LUT. --no-fit-rig shades from --shading-light (the camera centre) instead.");
+    parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
                    "Smoothness weight relative to observations (paper: 0.01); lutex multiplies it per channel by\n"
                    "      the channel's mean observed intensity over the brightest channel's, so a dark channel is\n"
                    "      not regularised harder than a bright one.");

@@ -21,6 +21,7 @@
 #include "lib/calibration/charuco_target.h"
 #include "lib/calibration/chessboard_target.h"
 #include "lib/calibration/pure_water_sampling.h"
+#include "lib/calibration/reshading.h"
 #include "lib/calibration/targets.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/lut/lut_file.h"
@@ -360,6 +361,16 @@ LightRig ShadingRig(const CalibrateOptions& options) {
   return rig;
 }
 
+// How the water prior is fitted: from the named water, the rig's beams too when no rig is given.
+WaterPriorOptions WaterPriorOptionsOf(const CalibrateOptions& options) {
+  WaterPriorOptions prior_options;
+  prior_options.start = ReferenceWater(options);
+  prior_options.grey_world_albedo = options.calibration.grey_world_albedo;
+  prior_options.num_threads = options.num_threads;
+  prior_options.fit_beam = options.calibration.grid.shading.rig.lights.empty();
+  return prior_options;
+}
+
 // The reference LUT (calibrator.h): in water the water prior fitted to the observations
 // (lib/calibration/water_prior.h), starting from the named water; in air the rig's light without water.
 FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, const FrustumLutGrid& grid,
@@ -369,12 +380,7 @@ FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, c
     const Simulator simulator(no_geometry, ShadingRig(options), Water::Air(), SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
     return simulator.TrueLut(camera, grid);
   }
-  WaterPriorOptions prior_options;
-  prior_options.start = ReferenceWater(options);
-  prior_options.grey_world_albedo = options.calibration.grey_world_albedo;
-  prior_options.num_threads = options.num_threads;
-  prior_options.fit_beam = options.calibration.grid.shading.rig.lights.empty();
-  WaterPrior prior = FitWaterPrior(observations, ShadingRig(options), camera, grid, prior_options);
+  WaterPrior prior = FitWaterPrior(observations, ShadingRig(options), camera, grid, WaterPriorOptionsOf(options));
   FrustumLut lut = std::move(prior.lut);
   summary->water_prior = std::move(prior);
   return lut;
@@ -461,7 +467,20 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
 
   CalibrateSummary summary;
   summary.num_images = dive.model().images.size();
-  const ObservationSet observations = GatherObservations(options, dive, camera, &summary);
+  ObservationSet observations = GatherObservations(options, dive, camera, &summary);
+  // Not when the user said where the light is (a rig file, or --shading-light).
+  if (options.fit_rig && !calibration.in_air && calibration.grid.shading.rig.lights.empty() &&
+      calibration.grid.shading.light_in_cam.isZero()) {
+    // Shading with the fitted rig: fit it to the observations shaded from the camera, then shade them
+    // with it (their cos_theta depends on the rig).
+    const WaterPrior guess =
+        FitWaterPrior(observations, ShadingRig(options), camera, calibration.grid, WaterPriorOptionsOf(options));
+    LogInfo() << "shading with the fitted rig: " << DescribeWaterPrior(guess);
+    options.calibration.grid.shading.rig = guess.rig;
+    calibration.grid.shading.rig = guess.rig;
+    Reshade(calibration.grid.shading, std::min(options.sampling.min_cos_theta, options.correspondence_extraction.views.min_cos_theta),
+            &observations);
+  }
   summary.albedo_span = SpanOfKnownColours(observations.known_colors);
   summary.warnings = NarrowSpanWarnings(summary.albedo_span, calibration.in_air, !observations.pure_water.empty(),
                                         !observations.correspondences.empty());

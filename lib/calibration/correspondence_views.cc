@@ -39,7 +39,8 @@ std::optional<SurfaceView> ViewInOtherImage(const Eigen::Vector3d& point_in_worl
   const Eigen::Vector3d direction = other.rays.Direction(col, row).cast<double>();
   view.pixel = Eigen::Vector2d(col + 0.5, row + 0.5);
   view.point_in_cam = (depth / direction.z()) * direction;
-  view.cos_theta = options.shading.Cosine(view.point_in_cam, Eigen::Vector3d(normal[0], normal[1], normal[2]));
+  view.normal_in_cam = Eigen::Vector3d(normal[0], normal[1], normal[2]);
+  view.cos_theta = options.shading.Cosine(view.point_in_cam, view.normal_in_cam);
   if (view.cos_theta < options.min_cos_theta) return std::nullopt;
 
   // The footprint: one surface (within the depth tolerance plus the tilt across it) of one colour.

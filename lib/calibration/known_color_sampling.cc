@@ -40,7 +40,8 @@ std::vector<KnownColorObservation> SampleKnownColors(const cv::Mat& image, const
       observation.pixel = Eigen::Vector2d(col + 0.5, row + 0.5);
       observation.point_in_cam = (depth / direction.z()) * direction;
       const cv::Vec3f normal = maps.normal.at<cv::Vec3f>(row, col);
-      observation.cos_theta = options.shading.Cosine(observation.point_in_cam, Eigen::Vector3d(normal[0], normal[1], normal[2]));
+      observation.normal_in_cam = Eigen::Vector3d(normal[0], normal[1], normal[2]);
+      observation.cos_theta = options.shading.Cosine(observation.point_in_cam, observation.normal_in_cam);
       if (observation.cos_theta < options.min_cos_theta) continue;
       observation.intensity = Eigen::Vector3d(value[0], value[1], value[2]);
       observation.albedo = Eigen::Vector3d(albedo[0], albedo[1], albedo[2]);

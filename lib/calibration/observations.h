@@ -17,6 +17,7 @@ struct KnownColorObservation {
   Eigen::Vector3d albedo = Eigen::Vector3d::Zero();     // linear RGB
   double cos_theta = 1.0;
   Eigen::Vector3d weight = Eigen::Vector3d::Ones();     // per channel (paper "Weights and Accuracy")
+  Eigen::Vector3d normal_in_cam = Eigen::Vector3d::Zero();  // unit, facing the camera (what cos_theta is of)
 };
 
 // A pixel of a pure-water image: backscatter only, so beta along its ray is at most the observed value at
@@ -33,6 +34,7 @@ struct SurfaceView {
   Eigen::Vector3d point_in_cam = Eigen::Vector3d::Zero();
   Eigen::Vector3d intensity = Eigen::Vector3d::Zero();  // linear RGB
   double cos_theta = 1.0;
+  Eigen::Vector3d normal_in_cam = Eigen::Vector3d::Zero();  // unit, facing the camera (what cos_theta is of)
 };
 
 // The same surface point seen by two images (paper Eq. 8 with lutex's shading): its albedo

@@ -124,7 +124,8 @@ std::vector<SurfaceSample> SampleSuperpixels(const cv::Mat& image, const Geometr
     const Eigen::Vector3d direction = rays.Direction(pixel.x, pixel.y).cast<double>();
     sample.view.pixel = Eigen::Vector2d(pixel.x + 0.5, pixel.y + 0.5);
     sample.view.point_in_cam = (depth / direction.z()) * direction;
-    sample.view.cos_theta = options.shading.Cosine(sample.view.point_in_cam, Eigen::Vector3d(normal[0], normal[1], normal[2]));
+    sample.view.normal_in_cam = Eigen::Vector3d(normal[0], normal[1], normal[2]);
+    sample.view.cos_theta = options.shading.Cosine(sample.view.point_in_cam, sample.view.normal_in_cam);
     if (sample.view.cos_theta < options.min_cos_theta) continue;
     sample.view.intensity = color;
     sample.footprint_radius = std::max(1.0, 0.5 * depth_inside[label] / scale);

@@ -18,6 +18,7 @@
 #include "colmap_integration/stages/restore_workspace.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "lib/image/image_io.h"
+#include "lib/lut/lut_file.h"
 #include "tests/support/blender_dataset.h"
 #include "tests/support/temp_dir.h"
 
@@ -27,11 +28,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // Calibrates from a water's two colour boards and its pure water, shading with the metadata's rig
-// (lutex calibrate --shading-rig), into `dir`.
-CalibrateSummary CalibrateFromBoards(const fs::path& dev, const std::string& water, const fs::path& dir) {
+// (lutex calibrate --shading-rig) or, without `with_rig`, with the rig lutex fits (the default), into `dir`.
+CalibrateSummary CalibrateFromBoards(const fs::path& dev, const std::string& water, const fs::path& dir,
+                                     bool with_rig = true) {
   CalibrateOptions calibrate;
   calibrate.workspace = dev / ("calib_boards_" + water);
-  calibrate.calibration.grid.shading.rig = testing::LoadBlenderDataset(calibrate.workspace).rig;
+  if (with_rig) calibrate.calibration.grid.shading.rig = testing::LoadBlenderDataset(calibrate.workspace).rig;
   calibrate.mesh = calibrate.workspace / "scene" / "mesh.ply";
   calibrate.targets = calibrate.workspace / "metadata.json";
   calibrate.pure_water = dev / ("purewater_" + water);
@@ -73,6 +75,25 @@ std::vector<double> SortedPatchErrors(const fs::path& checker, const fs::path& l
   }
   std::sort(errors.begin(), errors.end());
   return errors;
+}
+
+// Without a rig file lutex fits the rig and shades with it (calibrate_workspace.h, fit_rig): the issue's
+// goals for clear water hold (median <= 2, worst <= 8; the exact rig gives 0.51 / 6.05, camera-centred
+// shading 0.66 / 19.4), and the rig it found is recorded in the LUT's shading.
+TEST(BlenderCalibration, WithoutARigFileTheFittedRigShadesTheColorChecker) {
+  const auto dev = testing::SharedDevDatasets();
+  if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
+  testing::TempDir dir;
+  const CalibrateSummary calibrated = CalibrateFromBoards(*dev, "clear", dir.path(), false);
+  ASSERT_TRUE(calibrated.water_prior.has_value());
+  EXPECT_GE(calibrated.water_prior->rig.lights.size(), 2u);  // the truth: two spots at +-0.4 m
+  EXPECT_EQ(ReadLut(calibrated.lut).grid().shading.rig.lights.size(), calibrated.water_prior->rig.lights.size());
+  const std::vector<double> errors = SortedPatchErrors(*dev / "checker_clear", calibrated.lut, dir.path());
+  ASSERT_GT(errors.size(), 100u);
+  std::printf("checker_clear, fitted rig: median %.2f, p90 %.2f, worst %.2f\n", errors[errors.size() / 2],
+              errors[errors.size() * 9 / 10], errors.back());
+  EXPECT_LE(errors[errors.size() / 2], 2.0);
+  EXPECT_LE(errors.back(), 8.0);
 }
 
 // The water prior measures the water (lib/calibration/water_prior.h): its signal attenuation must lie
