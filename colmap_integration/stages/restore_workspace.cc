@@ -169,11 +169,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
     cv::Mat observed;
     try {
       observed = ReadLinearImage(input, options.input_encoding);
-      if (observed.cols != rays.width() || observed.rows != rays.height()) {
-        throw std::runtime_error(input.string() + ": the image is " + std::to_string(observed.cols) + "x" +
-                                 std::to_string(observed.rows) + " but its camera is " + std::to_string(rays.width()) +
-                                 "x" + std::to_string(rays.height()));
-      }
+      ExpectCameraSize(input, observed.cols, observed.rows, rays.width(), rays.height());
     } catch (const std::runtime_error& error) {
       skip_or_throw(error);  // unreadable pixels behind a sound header (a truncated file)
       return;

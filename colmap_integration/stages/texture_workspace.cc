@@ -9,6 +9,7 @@
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "lib/image/image_header.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/geometry/up_direction.h"
 #include "lib/util/logging.h"
@@ -116,11 +117,8 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   ViewImageSource source;
   source.linear_rgb = [&](std::size_t v) {
     const cv::Mat image = ReadLinearImage(image_paths[v], options.image_encoding);
-    if (image.cols != static_cast<int>(views[v].camera.width) || image.rows != static_cast<int>(views[v].camera.height)) {
-      throw std::runtime_error(image_paths[v].string() + ": the image is " + std::to_string(image.cols) + "x" +
-                               std::to_string(image.rows) + " but its camera is " +
-                               std::to_string(views[v].camera.width) + "x" + std::to_string(views[v].camera.height));
-    }
+    ExpectCameraSize(image_paths[v], image.cols, image.rows, static_cast<int>(views[v].camera.width),
+                     static_cast<int>(views[v].camera.height));
     return image;
   };
   if (!confidence_paths.empty()) {

@@ -403,7 +403,10 @@ std::string DescribeWaterPrior(const WaterPrior& prior) {
     std::snprintf(text, sizeof(text), "%s (%.2f, %.2f, %.2f) m %s", l == 0 ? " at" : ",", light.position_in_cam.x(),
                   light.position_in_cam.y(), light.position_in_cam.z(), BeamProfileName(light.profile));
     description += text;
-    if (light.profile == BeamProfile::kCosinePower) description += "^" + std::to_string(light.exponent).substr(0, 3);
+    if (light.profile == BeamProfile::kCosinePower) {
+      std::snprintf(text, sizeof(text), "^%.1f", light.exponent);
+      description += text;
+    }
   }
   return description;
 }

@@ -85,14 +85,16 @@ std::optional<ImageHeader> ReadImageHeader(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
+void ExpectCameraSize(const std::filesystem::path& path, int width, int height, int camera_width, int camera_height) {
+  if (width == camera_width && height == camera_height) return;
+  throw std::runtime_error(path.string() + ": the image is " + std::to_string(width) + "x" + std::to_string(height) +
+                           " but its camera is " + std::to_string(camera_width) + "x" + std::to_string(camera_height));
+}
+
 void CheckImageHeader(const std::filesystem::path& path, int width, int height, ImageEncoding encoding) {
   const std::optional<ImageHeader> header = ReadImageHeader(path);
   if (!header) return;
-  if (header->width != width || header->height != height) {
-    throw std::runtime_error(path.string() + ": the image is " + std::to_string(header->width) + "x" +
-                             std::to_string(header->height) + " but its camera is " + std::to_string(width) + "x" +
-                             std::to_string(height));
-  }
+  ExpectCameraSize(path, header->width, header->height, width, height);
   if (header->channels != 1 && header->channels != 3 && header->channels != 4) {
     throw std::runtime_error(path.string() + ": the image has " + std::to_string(header->channels) +
                              " channels; lutex reads grey, RGB or RGBA");

@@ -27,6 +27,9 @@ struct ImageHeader {
 // header is truncated or malformed.
 std::optional<ImageHeader> ReadImageHeader(const std::filesystem::path& path);
 
+// Throws std::runtime_error "PATH: the image is WxH but its camera is CWxCH" unless the sizes agree.
+void ExpectCameraSize(const std::filesystem::path& path, int width, int height, int camera_width, int camera_height);
+
 // Throws std::runtime_error naming the file unless what its header says suits a `width` x `height` camera
 // and `encoding` (8-bit samples for srgb8, 16-bit for linear16; PNG and JPEG hold no float). Files whose
 // header lutex does not read pass (they are checked when decoded).
