@@ -85,7 +85,7 @@ Measurement Texture(const fs::path& workspace, int num_threads) {
   TextureOptions options;
   options.workspace = workspace;
   options.mesh = workspace / "scene" / "mesh.ply";
-  options.images = workspace / "images";
+  options.views.images = workspace / "images";
   options.output = workspace / "model.glb";
   options.baking.num_threads = num_threads;
   start = std::chrono::steady_clock::now();

@@ -11,9 +11,10 @@ packages=(
   libopencv-dev libopencv-contrib-dev
   libopenmesh-dev libembree-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libgdal-dev libproj-dev gdal-bin
   libgtest-dev libgmock-dev
   colmap
-  python3-numpy python3-opencv
+  python3-numpy python3-opencv python3-gdal
   chromium
 )
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -199,11 +200,15 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     for (std::size_t v = 0; v < views.size(); ++v) {
       if (!faces_of_view[v].empty()) used_views.push_back(v);
     }
+    summary.views_read += used_views.size();
     std::vector<TexelSamples> samples(end_texel - first_texel);
-    ProgressReporter progress(passes.size() > 1 ? "texture: colours, pass " + std::to_string(p + 1) + "/" +
-                                                      std::to_string(passes.size())
-                                                : std::string("texture: colours"),
-                              used_views.size(), "views");
+    std::optional<ProgressReporter> progress;
+    if (options.show_progress) {
+      progress.emplace(passes.size() > 1 ? "texture: colours, pass " + std::to_string(p + 1) + "/" +
+                                               std::to_string(passes.size())
+                                         : std::string("texture: colours"),
+                       used_views.size(), "views");
+    }
     ParallelForOnWorkers(used_views.size(), options.num_threads, [&](std::size_t i, int worker) {
       const std::size_t v = used_views[i];
       const cv::Mat colour = LoadViewImage(source, views, v);
@@ -212,9 +217,9 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
       raycaster.Render(views[v], &maps);
       SampleView(mesh, views[v], static_cast<std::uint32_t>(v), maps, colour, confidence, faces_of_view[v], layout,
                  first_texel, samples, locks);
-      progress.Advance();
+      if (progress) progress->Advance();
     });
-    progress.Finish();
+    if (progress) progress->Finish();
     for (std::size_t t = first_texel; t < end_texel; ++t) {
       const AtlasTexel& texel = layout.texels[t];
       cv::Vec3f& out = pages[texel.page].at<cv::Vec3f>(texel.y, texel.x);

@@ -43,10 +43,13 @@ struct TexelFusionOptions {
   // Bound on the sample buffers of one pass.
   std::size_t memory_limit_bytes = std::size_t{2} << 30;
   int num_threads = 0;
+  // Progress over the views on stderr; off for callers that fuse many small layouts and report their own.
+  bool show_progress = true;
 };
 
 struct TexelFusionSummary {
   int num_passes = 0;
+  std::size_t views_read = 0;  // images read, over all passes
   std::size_t num_texels = 0;
   std::size_t texels_without_samples = 0;  // no view sees them: filled from their neighbours
   std::size_t rejected_samples = 0;

@@ -6,6 +6,7 @@
 #include "colmap_integration/cli/calibrate_command.h"
 #include "colmap_integration/cli/dive_options.h"
 #include "colmap_integration/cli/image_encoding_option.h"
+#include "colmap_integration/cli/mosaic_command.h"
 #include "colmap_integration/cli/restore_command.h"
 #include "colmap_integration/cli/texture_command.h"
 #include "colmap_integration/stages/run_workspace.h"
@@ -23,6 +24,8 @@ int RunRunCommand(int argc, char** argv) {
       "             and/or pure-water images (options as lutex calibrate)   -> calibration/lut.lut\n"
       "  restore    every image restored to albedo, with confidence maps   -> restored/, restored_confidence/\n"
       "  texture    one albedo texture for the mesh                          -> model.glb\n"
+      "  mosaic     a georeferenced orthomosaic and DEM (options as lutex mosaic; --no-mosaic to skip)\n"
+      "                                                                      -> mosaic/ortho.tif, dem.tif\n"
       "  report     an HTML page to judge the result                         -> report/index.html\n"
       "(and with --depth-maps a raycast stage -> raycast/). Stop it at any time, even with kill -9, and run it\n"
       "again: finished stages are skipped (W/lutex/run/STAGE.json records what each consumed: inputs by size\n"
@@ -45,9 +48,12 @@ int RunRunCommand(int argc, char** argv) {
   AddRestoreStageOptions(parser, &options.restore);
   parser.SetGroup("texture");
   AddTextureStageOptions(parser, &options.texture);
+  parser.SetGroup("mosaic");
+  parser.AddFlag("mosaic", &options.make_mosaic, "Make the orthomosaic and DEM (--no-mosaic to skip).");
+  AddMosaicStageOptions(parser, &options.mosaic);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {
-    for (const char* stage : {"calibrate", "restore", "texture"}) options.stage_settings[stage] = parser.Settings(stage);
+    for (const char* stage : {"calibrate", "restore", "texture", "mosaic"}) options.stage_settings[stage] = parser.Settings(stage);
 
     const RunSummary summary = RunWorkspace(options);
     std::cout << "\nlutex run: done in " << std::fixed << std::setprecision(1) << summary.seconds << " s\n";
@@ -61,6 +67,7 @@ int RunRunCommand(int argc, char** argv) {
               << "  restored images: " << summary.restored.string() << "\n"
               << "  confidence maps: " << summary.confidence.string() << "\n"
               << "  textured model:  " << summary.model.string() << "\n";
+    if (!summary.mosaic.empty()) std::cout << "  orthomosaic:     " << summary.mosaic.string() << "\n";
     if (!summary.report.empty()) std::cout << "  report:          " << summary.report.string() << "\n";
   });
   return 0;

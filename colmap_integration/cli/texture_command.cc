@@ -25,9 +25,9 @@ int RunTextureCommand(int argc, char** argv) {
       "DIR_confidence when present. Images are streamed from disk; memory depends on the mesh and the atlas,\n"
       "not on the number of images.");
   AddDiveOptions(parser, &options.workspace, &options.mesh);
-  parser.AddPath("images", &options.images, "Images to texture from (default W/lutex/restored, else W/images).");
-  AddImageEncodingOption(parser, "image-encoding", &options.image_encoding, "How those images are encoded:");
-  parser.AddPath("confidence", &options.confidence, "Confidence maps (default DIR_confidence when present).");
+  parser.AddPath("images", &options.views.images, "Images to texture from (default W/lutex/restored, else W/images).");
+  AddImageEncodingOption(parser, "image-encoding", &options.views.image_encoding, "How those images are encoded:");
+  parser.AddPath("confidence", &options.views.confidence, "Confidence maps (default DIR_confidence when present).");
   parser.AddPath("output", &options.output, "Textured model: .glb (default W/lutex/model.glb), .gltf, .obj or .ply.");
   AddImageEncodingOption(parser, "page-encoding", &options.page_encoding,
                          "OBJ/PLY pages (glTF pages are always srgb8):");
@@ -42,19 +42,14 @@ int RunTextureCommand(int argc, char** argv) {
 
 void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
   TextureBakingOptions& baking = options->baking;
-  parser.AddFlag("no-confidence", &options->ignore_confidence, "Trust every pixel equally.");
+  parser.AddFlag("no-confidence", &options->views.ignore_confidence, "Trust every pixel equally.");
   parser.AddString("up-axis", &options->up_axis,
                    "The model's up for the GLB (glTF is +Y up): x, -x, y, -y, z, -z, or auto = opposite the\n"
                    "      cameras' mean viewing direction (snapped to an axis within 10 degrees).");
   parser.AddDouble("texel-size", &baking.charts.texel_size,
                    "Texel size in scene units (e.g. 0.001 = 1 mm if the model is in metres), the same at any\n"
                    "      range; 0 (default) = the native resolution of each chart's view.");
-  parser.AddCustom("blend", "fuse", "fuse (robust weighted fusion of all views) or single (one view per face).",
-                   [&baking](const std::string& text) { baking.fusion.blend = ParseTexelBlend(text); });
-  parser.AddDouble("view-smoothness", &baking.selection.smoothness,
-                   "Potts weight between adjacent faces from different views (0 = best view per face).");
-  parser.AddInt("max-views-per-face", &baking.visibility.max_views_per_face,
-                "Best views kept per face for selection and fusion.");
+  AddViewFusionOptions(parser, &baking);
   parser.AddInt("max-page-size", &baking.charts.max_size, "Largest atlas page side in texels.");
   parser.AddInt("padding", &baking.charts.padding, "Texels around each chart.");
   parser.AddCustom("memory-limit", std::to_string(baking.fusion.memory_limit_bytes >> 20),
@@ -69,6 +64,15 @@ void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
                      if (!(mib >= 1.0)) throw std::invalid_argument("--memory-limit must be at least 1 MiB, not '" + text + "'");
                      baking.fusion.memory_limit_bytes = static_cast<std::size_t>(mib * 1024.0 * 1024.0);
                    });
+}
+
+void AddViewFusionOptions(OptionParser& parser, TextureBakingOptions* baking) {
+  parser.AddCustom("blend", "fuse", "fuse (robust weighted fusion of all views) or single (one view per face).",
+                   [baking](const std::string& text) { baking->fusion.blend = ParseTexelBlend(text); });
+  parser.AddDouble("view-smoothness", &baking->selection.smoothness,
+                   "Potts weight between adjacent faces from different views (0 = best view per face).");
+  parser.AddInt("max-views-per-face", &baking->visibility.max_views_per_face,
+                "Best views kept per face for selection and fusion.");
 }
 
 }  // namespace lutex

@@ -1,5 +1,6 @@
 #pragma once
 
+// `lutex texture`, and the baking options `lutex run` and `lutex mosaic` share.
 
 #include "colmap_integration/cli/option_parser.h"
 #include "colmap_integration/stages/texture_workspace.h"
@@ -12,5 +13,9 @@ int RunTextureCommand(int argc, char** argv);
 // Registers how to bake: the options of `lutex texture` except --workspace, --mesh, --images,
 // --image-encoding, --confidence, --output, --page-encoding and --num-threads (which `lutex run` sets).
 void AddTextureStageOptions(OptionParser& parser, TextureOptions* options);
+
+// Registers how views are chosen and fused (--blend, --view-smoothness, --max-views-per-face): the
+// texture's, which the mosaic shares.
+void AddViewFusionOptions(OptionParser& parser, TextureBakingOptions* baking);
 
 }  // namespace lutex

@@ -5,6 +5,7 @@
 //   W/sparse/0/ or W/sparse/     the sparse model (binary or text)
 //   W/dense/N/                   image_undistorter output: images/, sparse/, stereo/depth_maps,
 //                                stereo/normal_maps, and after fusion/meshing fused.ply, meshed-*.ply
+//   W/georef.json                where the model sits on the Earth (lib/geo/georeference.h); optional
 //   W/lutex/                     everything lutex writes, unless told otherwise
 
 #include <filesystem>
@@ -34,12 +35,15 @@ struct Workspace {
   std::vector<DenseWorkspace> dense;  // dense/0, dense/1, ... present, in order
 
   std::filesystem::path OutputDir() const { return root / "lutex"; }
+  std::filesystem::path GeoreferencePath() const { return root / "georef.json"; }
   // The default outputs under OutputDir(), stated once for the commands that write them and those that
   // read them (run, report).
   std::filesystem::path RaycastDir() const { return OutputDir() / "raycast"; }
   std::filesystem::path LutPath() const { return OutputDir() / "calibration" / "lut.lut"; }
   std::filesystem::path RestoredDir() const { return OutputDir() / "restored"; }
   std::filesystem::path ModelPath() const { return OutputDir() / "model.glb"; }
+  std::filesystem::path OrthomosaicPath() const { return OutputDir() / "mosaic" / "ortho.tif"; }
+  std::filesystem::path DemPath() const { return OutputDir() / "mosaic" / "dem.tif"; }
   std::filesystem::path RunRecordsDir() const { return OutputDir() / "run"; }
   std::filesystem::path ReportDir() const { return OutputDir() / "report"; }
 };

@@ -190,21 +190,49 @@ class DiveRun {
     TextureOptions texture = options_.texture;
     texture.workspace = options_.workspace;
     texture.mesh = options_.mesh;
-    texture.images = summary_.restored;
-    texture.confidence = summary_.confidence;
-    texture.image_encoding =
-        options_.restore.output_encoding == "same" ? options_.input_encoding
-                                                   : ParseImageEncoding(options_.restore.output_encoding);
+    texture.views = TextureViews();
     texture.output = workspace_.ModelPath();
     texture.baking.num_threads = options_.num_threads;
     summary_.model = texture.output;
     StageRecord record = BaseRecord("texture");
-    record.AddSetting("image-encoding", ImageEncodingName(texture.image_encoding));
+    record.AddSetting("image-encoding", ImageEncodingName(texture.views.image_encoding));
     AddFolder(&record, summary_.restored);
-    if (!texture.ignore_confidence) AddFolder(&record, summary_.confidence);
+    if (!texture.views.ignore_confidence) AddFolder(&record, summary_.confidence);
     record.AddOutput(texture.output);
     summary_.stages.push_back(runner_.Run(record, {texture.output.parent_path()}, [&](bool) {
       return SummaryText(TextureWorkspace(texture, Dive()), PrintTextureSummary);
+    }));
+  }
+
+  // The orthomosaic and DEM, from the restored images, with the texture's view selection and fusion.
+  void Mosaic() {
+    MosaicOptions mosaic = options_.mosaic;
+    mosaic.workspace = options_.workspace;
+    mosaic.mesh = options_.mesh;
+    mosaic.views = TextureViews();
+    mosaic.output = workspace_.OrthomosaicPath();
+    mosaic.dem = workspace_.DemPath();
+    mosaic.ortho.baking = options_.texture.baking;
+    mosaic.ortho.baking.num_threads = options_.num_threads;
+    const WorkspaceGeoreference georeference = ResolveGeoreference(mosaic.georeference, workspace_);
+    if (!georeference.georeference.IsSet()) {
+      const std::string unfit = WhyNotAMapWithoutGeoreference(Dive().model());
+      if (!unfit.empty()) {
+        summary_.stages.push_back({"mosaic", "not needed", 0.0, "mosaic: skipped: " + unfit + "\n"});
+        return;
+      }
+    }
+    summary_.mosaic = mosaic.output;
+    StageRecord record = BaseRecord("mosaic");
+    for (const auto& [name, value] : TextureSettings()) record.AddSetting("texture " + name, value);
+    record.AddSetting("image-encoding", ImageEncodingName(mosaic.views.image_encoding));
+    AddFolder(&record, summary_.restored);
+    if (!mosaic.views.ignore_confidence) AddFolder(&record, summary_.confidence);
+    if (fs::exists(workspace_.GeoreferencePath())) record.AddFileContents(workspace_.GeoreferencePath());
+    record.AddOutput(mosaic.output);
+    record.AddOutput(mosaic.dem);
+    summary_.stages.push_back(runner_.Run(record, {mosaic.output.parent_path()}, [&](bool) {
+      return SummaryText(MosaicWorkspace(mosaic, Dive()), PrintMosaicSummary);
     }));
   }
 
@@ -219,6 +247,22 @@ class DiveRun {
   RunSummary& summary() { return summary_; }
 
  private:
+  // The restored images and their confidence, as restore wrote them, with the texture's confidence choice.
+  WorkspaceViewsOptions TextureViews() const {
+    WorkspaceViewsOptions views = options_.texture.views;
+    views.images = summary_.restored;
+    views.confidence = summary_.confidence;
+    views.image_encoding = options_.restore.output_encoding == "same"
+                               ? options_.input_encoding
+                               : ParseImageEncoding(options_.restore.output_encoding);
+    return views;
+  }
+
+  std::map<std::string, std::string> TextureSettings() const {
+    const auto found = options_.stage_settings.find("texture");
+    return found == options_.stage_settings.end() ? std::map<std::string, std::string>() : found->second;
+  }
+
   // The record every stage starts from: its settings, the model and the mesh.
   StageRecord BaseRecord(const std::string& stage) const {
     StageRecord record(stage);
@@ -255,6 +299,11 @@ InputsAndOutputs RunPaths(const RunOptions& options, const Workspace& workspace)
   paths.AddOutput(workspace.RestoredDir());
   paths.AddOutput(ConfidenceDirOf(workspace.RestoredDir()));
   paths.AddOutput(workspace.ModelPath());
+  if (options.make_mosaic) {
+    paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
+    paths.AddOutput(workspace.OrthomosaicPath());
+    paths.AddOutput(workspace.DemPath());
+  }
   if (options.report) paths.AddOutput(workspace.ReportDir());
   return paths;
 }
@@ -283,6 +332,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
   run.Calibrate();
   run.Restore();
   run.Texture();
+  if (options.make_mosaic) run.Mosaic();
   run.summary().seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.report) run.Report();
   return run.summary();

@@ -6,6 +6,8 @@
 //   calibrate   (unless a LUT is given)  calibration/   lut.lut, coverage.lut, calibration_summary.json, slabs/
 //   restore                              restored/, restored_confidence/
 //   texture                              model.glb
+//   mosaic      (unless mosaic is off)   mosaic/        ortho.tif, dem.tif (lutex mosaic); skipped with a
+//                                                       note for a model with no georeference that is not z-up
 //   report                               report/index.html (lutex report)
 //
 // Resumable: each stage keeps a record in W/lutex/run/STAGE.json (stage_record.h) of what it consumed
@@ -22,6 +24,7 @@
 #include <vector>
 
 #include "colmap_integration/stages/calibrate_workspace.h"
+#include "colmap_integration/stages/mosaic_workspace.h"
 #include "colmap_integration/stages/raycast_workspace.h"
 #include "colmap_integration/stages/restore_workspace.h"
 #include "colmap_integration/stages/texture_workspace.h"
@@ -43,7 +46,9 @@ struct RunOptions {
   CalibrateOptions calibrate;
   RestoreOptions restore;
   TextureOptions texture;
-  // Per stage ("raycast", "calibrate", "restore", "texture"), the settings that shape its output, by
+  MosaicOptions mosaic;  // its view selection and fusion are the texture's
+  bool make_mosaic = true;
+  // Per stage ("raycast", "calibrate", "restore", "texture", "mosaic"), the settings that shape its output, by
   // option name, as the command line and config file gave them; part of the stage's fingerprint.
   std::map<std::string, std::map<std::string, std::string>> stage_settings;
   // Redo every stage even when its record says it is up to date.
@@ -68,6 +73,7 @@ struct RunSummary {
   std::filesystem::path restored;
   std::filesystem::path confidence;
   std::filesystem::path model;
+  std::filesystem::path mosaic;  // the orthomosaic; empty when not made
   std::filesystem::path report;  // empty without report
   double seconds = 0.0;
 };

@@ -4,12 +4,9 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "colmap_integration/io/confidence_map_io.h"
-#include "colmap_integration/stages/restore_workspace.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/output_policy.h"
-#include "lib/image/image_header.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/geometry/up_direction.h"
 #include "lib/util/logging.h"
@@ -53,8 +50,8 @@ InputsAndOutputs PathsOf(const TextureOptions& options, const Workspace& workspa
   InputsAndOutputs paths;
   paths.AddWorkspace(workspace, "the workspace");
   paths.AddInput(options.mesh, "the mesh");
-  paths.AddInput(options.images.empty() ? workspace.RestoredDir() : options.images, "the images to texture from");
-  paths.AddInput(options.confidence, "the confidence maps");
+  paths.AddInput(options.views.images.empty() ? workspace.RestoredDir() : options.views.images, "the images to texture from");
+  paths.AddInput(options.views.confidence, "the confidence maps");
   paths.AddOutput(options.output.empty() ? workspace.ModelPath() : options.output);
   return paths;
 }
@@ -75,55 +72,13 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();
+  const WorkspaceViews found = FindWorkspaceViews(workspace, model, options.views, "texture");
+  const std::vector<TextureView>& views = found.views;
   TextureSummary summary;
-  summary.images = options.images;
-  if (summary.images.empty()) {
-    summary.images = workspace.RestoredDir();
-    if (!fs::is_directory(summary.images)) {
-      summary.images = workspace.images_dir;
-      LogWarning() << "texture: " << workspace.RestoredDir().string()
-                   << " does not exist; texturing the unrestored images of " << summary.images.string()
-                   << " (run lutex restore first for albedo)";
-    }
-  }
-  if (!fs::is_directory(summary.images)) throw std::runtime_error(summary.images.string() + ": no such folder");
-  if (!options.ignore_confidence) {
-    summary.confidence = options.confidence;
-    if (summary.confidence.empty()) {
-      const fs::path beside = ConfidenceDirOf(summary.images);
-      if (fs::is_directory(beside)) summary.confidence = beside;
-    } else if (!fs::is_directory(summary.confidence)) {
-      throw std::runtime_error(summary.confidence.string() + ": no such folder");
-    }
-  }
-  std::vector<TextureView> views;
-  std::vector<fs::path> image_paths, confidence_paths;
-  for (const auto& [id, image] : model.images) {
-    const fs::path path = FindRestoredImage(summary.images, image.name);
-    if (path.empty()) {
-      throw std::runtime_error((summary.images / image.name).string() + ": no such image (image " +
-                               std::to_string(id) + " of the model)");
-    }
-    image_paths.push_back(path);
-    if (!summary.confidence.empty()) {
-      const fs::path confidence = ConfidenceMapPath(summary.confidence, image.name);
-      if (!fs::exists(confidence)) throw std::runtime_error(confidence.string() + ": no such confidence map");
-      confidence_paths.push_back(confidence);
-    }
-    views.push_back({image.name, model.cameras.at(image.camera_id), image.cam_from_world});
-  }
+  summary.images = found.images;
+  summary.confidence = found.confidence;
   const fs::path output = options.output.empty() ? workspace.ModelPath() : options.output;
-
-  ViewImageSource source;
-  source.linear_rgb = [&](std::size_t v) {
-    const cv::Mat image = ReadLinearImage(image_paths[v], options.image_encoding);
-    ExpectCameraSize(image_paths[v], image.cols, image.rows, static_cast<int>(views[v].camera.width),
-                     static_cast<int>(views[v].camera.height));
-    return image;
-  };
-  if (!confidence_paths.empty()) {
-    source.confidence = [&](std::size_t v) { return ReadConfidenceMap(confidence_paths[v], views[v].camera); };
-  }
+  const ViewImageSource source = found.Source();
   summary.up = UpOf(options, views);
   summary.up_from_cameras = options.up_axis == "auto";
   TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, options.baking);

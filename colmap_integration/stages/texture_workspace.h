@@ -3,23 +3,18 @@
 // `lutex texture`: one albedo texture for the mesh of a COLMAP workspace, baked from the restored images
 // (texturing/texture_baker.h), written as GLB (or .gltf, .obj, .ply by the output's extension).
 //
-// Inputs, all checked before anything is written:
-//   images       folder with one image per registered image of the model, by the model's name; a restored
-//                image written as .png or .exr (lutex restore does so for 16-bit and float output) is
-//                found under that extension too. Default: W/lutex/restored when it exists, else W/images
-//                (then the texture shows the light and water, not albedo: a warning says so).
-//   confidence   IMAGES_confidence/NAME.png (as lutex restore writes them) when that folder exists; the
-//                view selection and the fusion then trust each pixel as much as the restoration did.
+// Inputs (workspace_views.h: the restored images by default, and their confidence maps) are all checked
+// before anything is written.
 // Output: default W/lutex/model.glb.
 
 #include <cstddef>
 #include <filesystem>
-#include <string>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/workspace_views.h"
 #include "lib/image/image_io.h"
 #include "texturing/texture_baker.h"
 
@@ -28,11 +23,8 @@ namespace lutex {
 struct TextureOptions {
   std::filesystem::path workspace;
   std::filesystem::path mesh;
-  std::filesystem::path images;      // empty: see above
-  std::filesystem::path confidence;  // empty: IMAGES_confidence when it exists
-  bool ignore_confidence = false;  // trust every pixel equally
-  std::filesystem::path output;      // empty: W/lutex/model.glb
-  ImageEncoding image_encoding = ImageEncoding::kSrgb8;
+  WorkspaceViewsOptions views;   // the images to texture from and their confidence
+  std::filesystem::path output;  // empty: W/lutex/model.glb
   // Encoding of OBJ/PLY pages (glTF pages are always 8-bit sRGB).
   ImageEncoding page_encoding = ImageEncoding::kSrgb8;
   TextureBakingOptions baking;

@@ -139,6 +139,8 @@ RayHit RaycastScene::Intersect(const Eigen::Vector3d& origin_in_world,
   result.hit = true;
   result.distance = rayhit.ray.tfar;
   result.face_id = static_cast<int>(rayhit.hit.primID);
+  result.b1 = rayhit.hit.u;
+  result.b2 = rayhit.hit.v;
   Eigen::Vector3d normal(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z);
   normal.normalize();
   if (normal.dot(direction_in_world) > 0.0) normal = -normal;

@@ -20,6 +20,7 @@ struct RayHit {
   bool hit = false;
   double distance = 0.0;  // along the (unit) ray direction
   int face_id = -1;
+  float b1 = 0.0f, b2 = 0.0f;  // hit point = (1 - b1 - b2) v0 + b1 v1 + b2 v2 of the face
   Eigen::Vector3d normal_in_world = Eigen::Vector3d::Zero();  // unit geometric normal, facing the ray origin
 };
 

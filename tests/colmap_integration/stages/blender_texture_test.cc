@@ -43,8 +43,8 @@ class BlenderTexture : public ::testing::Test {
     TextureOptions options;
     options.workspace = survey_;
     options.mesh = survey_ / "scene" / "mesh.ply";
-    options.images = images;
-    options.image_encoding = encoding;
+    options.views.images = images;
+    options.views.image_encoding = encoding;
     options.output = output;
     options.page_encoding = ImageEncoding::kLinear16;
     return options;

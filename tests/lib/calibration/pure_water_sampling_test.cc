@@ -68,7 +68,7 @@ TEST(PureWaterSampling, BlenderPureWaterPassesAndBoardFramesAreCaughtInClearAndT
   for (const std::string water : {"clear", "turbid"}) {
     std::vector<PureWaterImageStats> stats;
     std::vector<std::string> names;
-    for (const std::string dataset : {"purewater_" + water, "calib_boards_" + water}) {
+    for (const std::string& dataset : {"purewater_" + water, "calib_boards_" + water}) {
       std::vector<fs::path> images;
       for (const auto& entry : fs::directory_iterator(*dev / dataset / "images")) images.push_back(entry.path());
       std::sort(images.begin(), images.end());

@@ -1,0 +1,71 @@
+#pragma once
+
+// `lutex mosaic`: the georeferenced orthomosaic and DEM of a COLMAP workspace, as Cloud-Optimized
+// GeoTIFFs (texturing/ortho_mosaic.h for what a cell shows, lib/geo/cog_writer.h for the files).
+//
+// Inputs: the workspace's model and the mesh; the images to map (workspace_views.h: the restored images by
+// default) and their confidence maps; the georeference (workspace_georeference.h: options or
+// W/georef.json). All are checked before anything is written.
+// Outputs: default W/lutex/mosaic/ortho.tif (8-bit sRGB + alpha, or 16-bit linear + alpha) and
+// W/lutex/mosaic/dem.tif (float32 map heights, NaN nodata), same grid and CRS.
+
+#include <cstddef>
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+#include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/workspace_georeference.h"
+#include "colmap_integration/stages/workspace_views.h"
+#include "texturing/ortho_mosaic.h"
+
+namespace lutex {
+
+struct MosaicOptions {
+  std::filesystem::path workspace;
+  std::filesystem::path mesh;
+  WorkspaceViewsOptions views;  // the images to map and their confidence
+  GeoreferenceOptions georeference;
+  // Metres per pixel in the map CRS; 0: the images' own, the median over images of (depth at the image
+  // centre / focal length in pixels).
+  double gsd = 0.0;
+  std::filesystem::path output;  // empty: W/lutex/mosaic/ortho.tif
+  std::filesystem::path dem;     // empty: W/lutex/mosaic/dem.tif
+  bool no_dem = false;
+  ImageEncoding encoding = ImageEncoding::kSrgb8;  // srgb8 or linear16
+  // GDAL's block cache while the GeoTIFFs are written and converted.
+  std::size_t gdal_cache_bytes = std::size_t{256} << 20;
+  OrthoMosaicOptions ortho;  // tile size, and the texture's visibility, selection and fusion
+  void Check() const;
+};
+
+struct MosaicSummary {
+  std::filesystem::path ortho;
+  std::filesystem::path dem;  // empty without one
+  WorkspaceGeoreference georeference;
+  std::string crs;       // the map CRS ("EPSG:32632"), empty for the model's own frame
+  std::string crs_name;  // "WGS 84 / UTM zone 32N"
+  OrthoGrid grid;
+  bool gsd_from_images = false;
+  std::filesystem::path images;
+  std::filesystem::path confidence;
+  OrthoMosaicSummary mosaic;
+  double seconds = 0.0;
+};
+
+// The images' own GSD (see MosaicOptions::gsd); throws std::invalid_argument when no image centre sees
+// the mesh.
+double GsdOfViews(const RaycastScene& scene, const std::vector<TextureView>& views);
+
+// Why a model with no georeference cannot be mapped in its own frame (its cameras do not look down its
+// -z), or "" when it can.
+std::string WhyNotAMapWithoutGeoreference(const SparseModel& model);
+
+MosaicSummary MosaicWorkspace(const MosaicOptions& options);
+// The same on a dive loaded before: `dive` holds the workspace and mesh of `options`.
+MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& dive);
+
+// The lines the stage prints when done.
+void PrintMosaicSummary(std::ostream& out, const MosaicSummary& summary);
+
+}  // namespace lutex

@@ -1,0 +1,68 @@
+#include "colmap_integration/stages/workspace_views.h"
+
+#include <stdexcept>
+
+#include "colmap_integration/io/confidence_map_io.h"
+#include "colmap_integration/stages/restore_workspace.h"
+#include "lib/image/image_header.h"
+#include "lib/util/logging.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+WorkspaceViews FindWorkspaceViews(const Workspace& workspace, const SparseModel& model,
+                                  const WorkspaceViewsOptions& options, const std::string& stage) {
+  WorkspaceViews found;
+  found.image_encoding = options.image_encoding;
+  found.images = options.images;
+  if (found.images.empty()) {
+    found.images = workspace.RestoredDir();
+    if (!fs::is_directory(found.images)) {
+      found.images = workspace.images_dir;
+      LogWarning() << stage << ": " << workspace.RestoredDir().string() << " does not exist; using the unrestored images of "
+                   << found.images.string() << " (run lutex restore first for albedo)";
+    }
+  }
+  if (!fs::is_directory(found.images)) throw std::runtime_error(found.images.string() + ": no such folder");
+  if (!options.ignore_confidence) {
+    found.confidence = options.confidence;
+    if (found.confidence.empty()) {
+      const fs::path beside = ConfidenceDirOf(found.images);
+      if (fs::is_directory(beside)) found.confidence = beside;
+    } else if (!fs::is_directory(found.confidence)) {
+      throw std::runtime_error(found.confidence.string() + ": no such folder");
+    }
+  }
+  for (const auto& [id, image] : model.images) {
+    const fs::path path = FindRestoredImage(found.images, image.name);
+    if (path.empty()) {
+      throw std::runtime_error((found.images / image.name).string() + ": no such image (image " + std::to_string(id) +
+                               " of the model)");
+    }
+    found.image_paths.push_back(path);
+    if (!found.confidence.empty()) {
+      const fs::path confidence = ConfidenceMapPath(found.confidence, image.name);
+      if (!fs::exists(confidence)) throw std::runtime_error(confidence.string() + ": no such confidence map");
+      found.confidence_paths.push_back(confidence);
+    }
+    found.views.push_back({image.name, model.cameras.at(image.camera_id), image.cam_from_world});
+  }
+  return found;
+}
+
+ViewImageSource WorkspaceViews::Source() const {
+  ViewImageSource source;
+  source.linear_rgb = [this](std::size_t v) {
+    const cv::Mat image = ReadLinearImage(image_paths[v], image_encoding);
+    ExpectCameraSize(image_paths[v], image.cols, image.rows, static_cast<int>(views[v].camera.width),
+                     static_cast<int>(views[v].camera.height));
+    return image;
+  };
+  if (!confidence_paths.empty()) {
+    source.confidence = [this](std::size_t v) { return ReadConfidenceMap(confidence_paths[v], views[v].camera); };
+  }
+  return source;
+}
+
+}  // namespace lutex

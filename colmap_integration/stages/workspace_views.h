@@ -1,0 +1,48 @@
+#pragma once
+
+// The posed views of a workspace that texture and mosaic bake from: one per registered image of the
+// model, with its image (restored by default) and confidence map found and checked before any work.
+//
+//   images       folder with one image per registered image, by the model's name; a restored image
+//                written as .png or .exr (lutex restore does so for 16-bit and float output) is found
+//                under that extension too. Default: W/lutex/restored when it exists, else W/images (the
+//                result then shows the light and water, not albedo: a warning says so).
+//   confidence   IMAGES_confidence/NAME.png (as lutex restore writes them) when that folder exists; the
+//                view selection and the fusion then trust each pixel as much as the restoration did.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "colmap_integration/io/workspace.h"
+#include "lib/geometry/sparse_model.h"
+#include "lib/image/image_io.h"
+#include "texturing/texture_views.h"
+
+namespace lutex {
+
+struct WorkspaceViewsOptions {
+  std::filesystem::path images;      // empty: see above
+  std::filesystem::path confidence;  // empty: IMAGES_confidence when it exists
+  bool ignore_confidence = false;    // trust every pixel equally
+  ImageEncoding image_encoding = ImageEncoding::kSrgb8;
+};
+
+struct WorkspaceViews {
+  std::filesystem::path images;
+  std::filesystem::path confidence;  // empty when not used
+  std::vector<TextureView> views;
+  std::vector<std::filesystem::path> image_paths;
+  std::vector<std::filesystem::path> confidence_paths;  // empty when not used
+  ImageEncoding image_encoding = ImageEncoding::kSrgb8;
+
+  // Reads a view's image (checked against its camera's size) and confidence map. Refers to this object.
+  ViewImageSource Source() const;
+};
+
+// Throws std::runtime_error naming the folder, image or map that is missing. `stage` starts the warning
+// ("texture", "mosaic").
+WorkspaceViews FindWorkspaceViews(const Workspace& workspace, const SparseModel& model,
+                                  const WorkspaceViewsOptions& options, const std::string& stage);
+
+}  // namespace lutex
