@@ -60,6 +60,25 @@ int AddMaterial(tinygltf::Model& model, int texture, const std::string& name) {
   return static_cast<int>(model.materials.size() - 1);
 }
 
+// asset.extras.lutex: the model's up and georeference (gltf_export.h).
+tinygltf::Value FrameExtras(const TexturedMesh& textured) {
+  const auto vector = [](const Eigen::Vector3d& v) {
+    return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(v.x()), tinygltf::Value(v.y()), tinygltf::Value(v.z())});
+  };
+  tinygltf::Value::Object georeference;
+  georeference["frame"] = tinygltf::Value(FrameName(textured.georeference.frame));
+  if (textured.georeference.IsSet()) {
+    georeference["origin"] = vector(textured.georeference.origin);
+    if (!textured.georeference.crs.empty()) georeference["crs"] = tinygltf::Value(textured.georeference.crs);
+  }
+  tinygltf::Value::Object lutex;
+  lutex["up_in_model"] = vector(textured.up.normalized());
+  lutex["georeference"] = tinygltf::Value(georeference);
+  tinygltf::Value::Object extras;
+  extras["lutex"] = tinygltf::Value(lutex);
+  return tinygltf::Value(extras);
+}
+
 // Unit vertex normals: the mesh's own, else area-weighted face normals.
 std::vector<Eigen::Vector3f> VertexNormals(const Mesh& mesh) {
   std::vector<Eigen::Vector3d> sums(mesh.vertices.size(), Eigen::Vector3d::Zero());
@@ -154,6 +173,7 @@ tinygltf::Model BuildModel(const TexturedMesh& textured) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "lutex";
+  model.asset.extras = FrameExtras(textured);
   model.extensionsUsed.push_back("KHR_materials_unlit");
   model.buffers.emplace_back();
   tinygltf::Sampler sampler;

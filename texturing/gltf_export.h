@@ -13,6 +13,11 @@
 // - glTF is +Y up (spec 3.4): the root node's rotation turns the model's up (TexturedMesh::up) to +Y, so a
 //   viewer shows a seafloor as a floor, not a wall. glTF = rotation * model; a script wanting the model's
 //   own coordinates applies the node's inverse.
+// - asset.extras.lutex records the model's frame so a viewer or script can place it:
+//     {"up_in_model": [0, 0, 1], "georeference": {"frame": "projected", "crs": "EPSG:32632",
+//      "origin": [500123.0, 6001234.0, -812.5]}}
+//   (georeference.h for the frames; "frame": "none" without one). The model's coordinates are
+//   the root node's inverse applied to glTF's.
 // - Vertices are split where one mesh vertex has different texture coordinates in different charts.
 //
 // .glb: one binary file, images embedded through buffer views. .gltf: JSON with buffers and images

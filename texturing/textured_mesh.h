@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "lib/geo/georeference.h"
 #include "lib/geometry/mesh.h"
 
 namespace lutex {
@@ -26,6 +27,8 @@ struct TexturedMesh {
   // The model's up direction in the mesh's frame (unit). glTF is +Y up, so the glTF writer's root node
   // rotates this to +Y; the other formats have no convention and keep the mesh's frame.
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  // Where the mesh's frame sits on the Earth (the glTF writer records it in asset.extras).
+  Georeference georeference;
 
   std::size_t NumTexturedFaces() const;
 

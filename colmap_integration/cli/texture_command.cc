@@ -6,6 +6,7 @@
 
 #include "colmap_integration/cli/dive_options.h"
 #include "colmap_integration/cli/image_encoding_option.h"
+#include "colmap_integration/cli/mosaic_command.h"
 
 namespace lutex {
 
@@ -32,6 +33,7 @@ int RunTextureCommand(int argc, char** argv) {
   AddImageEncodingOption(parser, "page-encoding", &options.page_encoding,
                          "OBJ/PLY pages (glTF pages are always srgb8):");
   AddThreadsOption(parser, &options.baking.num_threads);
+  AddGeoreferenceOptions(parser, &options.georeference);
   AddTextureStageOptions(parser, &options);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {

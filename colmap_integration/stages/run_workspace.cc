@@ -191,11 +191,13 @@ class DiveRun {
     texture.workspace = options_.workspace;
     texture.mesh = options_.mesh;
     texture.views = TextureViews();
+    texture.georeference = options_.mosaic.georeference;
     texture.output = workspace_.ModelPath();
     texture.baking.num_threads = options_.num_threads;
     summary_.model = texture.output;
     StageRecord record = BaseRecord("texture");
     record.AddSetting("image-encoding", ImageEncodingName(texture.views.image_encoding));
+    record.AddSetting("georeference", ResolveGeoreference(texture.georeference, workspace_).georeference.Describe());
     AddFolder(&record, summary_.restored);
     if (!texture.views.ignore_confidence) AddFolder(&record, summary_.confidence);
     record.AddOutput(texture.output);

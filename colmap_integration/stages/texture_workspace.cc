@@ -8,6 +8,7 @@
 #include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/output_policy.h"
 #include "lib/geometry/mesh_io.h"
+#include "lib/geo/map_frame.h"
 #include "lib/geometry/up_direction.h"
 #include "lib/util/logging.h"
 #include "lib/util/option_error.h"
@@ -52,6 +53,7 @@ InputsAndOutputs PathsOf(const TextureOptions& options, const Workspace& workspa
   paths.AddInput(options.mesh, "the mesh");
   paths.AddInput(options.views.images.empty() ? workspace.RestoredDir() : options.views.images, "the images to texture from");
   paths.AddInput(options.views.confidence, "the confidence maps");
+  paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
   paths.AddOutput(options.output.empty() ? workspace.ModelPath() : options.output);
   return paths;
 }
@@ -79,11 +81,15 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   summary.confidence = found.confidence;
   const fs::path output = options.output.empty() ? workspace.ModelPath() : options.output;
   const ViewImageSource source = found.Source();
-  summary.up = UpOf(options, views);
-  summary.up_from_cameras = options.up_axis == "auto";
+  summary.georeference = ResolveGeoreference(options.georeference, workspace);
+  if (summary.georeference.georeference.IsSet()) MapFrame{summary.georeference.georeference};  // checks the CRS
+  const bool up_from_frame = options.up_axis == "auto" && summary.georeference.georeference.IsSet();
+  summary.up = up_from_frame ? Eigen::Vector3d::UnitZ() : UpOf(options, views);
+  summary.up_from_cameras = options.up_axis == "auto" && !up_from_frame;
   TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, options.baking);
   summary.baking = result.summary;
   result.textured.up = summary.up;
+  result.textured.georeference = summary.georeference.georeference;
   summary.written = WriteTexturedMesh(result.textured, output, options.page_encoding);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
@@ -117,8 +123,12 @@ void PrintTextureSummary(std::ostream& out, const TextureSummary& summary) {
             << "  images: " << summary.images.string() << "\n"
             << "  confidence: " << (summary.confidence.empty() ? std::string("not used") : summary.confidence.string())
             << "\n";
+  out << "  georeference: " << summary.georeference.georeference.Describe() << " from " << summary.georeference.source
+      << " (recorded in the GLB's asset.extras.lutex)\n";
   out << "  up: " << DirectionName(summary.up) << " of the model"
-      << (summary.up_from_cameras ? " (opposite the cameras' mean viewing direction)" : " (as given)")
+      << (summary.up_from_cameras ? " (opposite the cameras' mean viewing direction)"
+          : summary.georeference.georeference.IsSet() && summary.up == Eigen::Vector3d::UnitZ() ? " (the georeferenced frame's)"
+                                                                                                  : " (as given)")
       << "; the GLB turns it to glTF's +Y\n";
   for (const auto& path : summary.written) out << "  wrote " << path.string() << "\n";
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/workspace_georeference.h"
 #include "colmap_integration/stages/workspace_views.h"
 #include "lib/image/image_io.h"
 #include "texturing/texture_baker.h"
@@ -31,6 +32,8 @@ struct TextureOptions {
   // The model's up axis for the GLB ("x", "-x", "y", "-y", "z", "-z"), or "auto": opposite the cameras'
   // mean viewing direction, snapped to an axis within 10 degrees (lib/geometry/up_direction.h).
   std::string up_axis = "auto";
+  // Recorded in the GLB (options, else W/georef.json); with one, up is the frame's +z unless up_axis says.
+  GeoreferenceOptions georeference;
   void Check() const;
 };
 
@@ -41,6 +44,7 @@ struct TextureSummary {
   TextureBakingSummary baking;
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  // in the model's frame; the GLB turns it to +Y
   bool up_from_cameras = false;
+  WorkspaceGeoreference georeference;
   double seconds = 0.0;
 };
 

@@ -86,6 +86,32 @@ TEST(GltfExport, TheModelsUpBecomesGltfsUp) {
   }
 }
 
+// A script can place the model: asset.extras.lutex holds its up and its georeference, in doubles.
+TEST(GltfExport, TheGeoreferenceIsRecordedInTheAssetsExtras) {
+  testing::TempDir dir;
+  TexturedMesh textured = GradientGrid(4);
+  textured.georeference.frame = Georeference::Frame::kProjected;
+  textured.georeference.crs = "EPSG:32632";
+  textured.georeference.origin = {500123.456, 6001234.5, -812.25};
+  WriteGltf(textured, dir.path() / "model.glb");
+  const tinygltf::Model model = ReadGlb(dir.path() / "model.glb");
+  const tinygltf::Value& lutex = model.asset.extras.Get("lutex");
+  ASSERT_TRUE(lutex.IsObject());
+  const tinygltf::Value& georeference = lutex.Get("georeference");
+  EXPECT_EQ(georeference.Get("frame").Get<std::string>(), "projected");
+  EXPECT_EQ(georeference.Get("crs").Get<std::string>(), "EPSG:32632");
+  ASSERT_EQ(georeference.Get("origin").ArrayLen(), 3u);
+  EXPECT_EQ(georeference.Get("origin").Get(0).GetNumberAsDouble(), 500123.456);
+  EXPECT_EQ(georeference.Get("origin").Get(1).GetNumberAsDouble(), 6001234.5);
+  EXPECT_EQ(georeference.Get("origin").Get(2).GetNumberAsDouble(), -812.25);
+  EXPECT_EQ(lutex.Get("up_in_model").Get(2).GetNumberAsDouble(), 1.0);
+
+  textured.georeference = Georeference();
+  WriteGltf(textured, dir.path() / "local.glb");
+  EXPECT_EQ(ReadGlb(dir.path() / "local.glb").asset.extras.Get("lutex").Get("georeference").Get("frame").Get<std::string>(),
+            "none");
+}
+
 TEST(GltfExport, GlbHoldsTheMeshLocallyWithTheOriginInTheRootNode) {
   testing::TempDir dir;
   const TexturedMesh textured = GradientGrid(8);

@@ -8,6 +8,7 @@
 // Skips without the datasets.
 
 #include <cmath>
+#include <cstring>
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -112,6 +113,25 @@ TEST_F(BlenderMosaic, AModelAtUtmCoordinatesGivesTheSamePixels) {
     cv::minMaxLoc(difference.reshape(1), nullptr, &most);
     // Colours to one 16-bit step, heights to 1 mm.
     EXPECT_LE(most, std::string(file) == "dem.tif" ? 1e-3 : 1.0) << file;
+  }
+}
+
+TEST_F(BlenderMosaic, OneAndTwoThreadsMakeTheSamePixels) {
+  testing::TempDir dir;
+  std::vector<testing::GeoTiff> maps;
+  for (int threads : {1, 2}) {
+    MosaicOptions options = Mapping(survey_, survey_ / "scene" / "mesh.ply", dir.path() / std::to_string(threads), 0.01);
+    options.ortho.tile_size = 256;  // several tiles
+    options.ortho.baking.num_threads = threads;
+    MosaicWorkspace(options);
+    maps.push_back(testing::ReadGeoTiff(dir.path() / std::to_string(threads) / "ortho.tif"));
+    maps.push_back(testing::ReadGeoTiff(dir.path() / std::to_string(threads) / "dem.tif"));
+  }
+  for (int k = 0; k < 2; ++k) {
+    ASSERT_EQ(maps[k].samples.size(), maps[k + 2].samples.size());
+    const cv::Mat& a = maps[k].samples;
+    const cv::Mat& b = maps[k + 2].samples;
+    EXPECT_EQ(std::memcmp(a.data, b.data, a.total() * a.elemSize()), 0) << (k ? "dem" : "ortho");
   }
 }
 
