@@ -6,10 +6,6 @@
 //
 //   texture_benchmark [--images 200] [--num-threads 0]
 
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +15,7 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
+#include "bench/measure_in_child.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/stages/texture_workspace.h"
 #include "lib/image/image_io.h"
@@ -36,31 +33,6 @@ struct Measurement {
   double texels = 0.0;
   double faces = 0.0;
 };
-
-// Runs `work` in a child process and returns what it wrote to the pipe (so the peak resident set of
-// the measurement is its own, not the simulation's).
-Measurement InChild(const std::function<Measurement()>& work) {
-  int pipe_ends[2];
-  if (pipe(pipe_ends) != 0) throw std::runtime_error("pipe failed");
-  const pid_t child = fork();
-  if (child == 0) {
-    close(pipe_ends[0]);
-    Measurement measurement = work();
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    measurement.peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
-    if (write(pipe_ends[1], &measurement, sizeof(measurement)) != sizeof(measurement)) _exit(1);
-    _exit(0);
-  }
-  close(pipe_ends[1]);
-  Measurement measurement;
-  const bool complete = read(pipe_ends[0], &measurement, sizeof(measurement)) == sizeof(measurement);
-  close(pipe_ends[0]);
-  int status = 0;
-  waitpid(child, &status, 0);
-  if (!complete || status != 0) throw std::runtime_error("the measurement failed");
-  return measurement;
-}
 
 // The 20 x 12.5 m, 1.25 M-face dive with `lines` survey lines.
 void SimulateTextureDive(const fs::path& root, int lines, int images_per_line, int num_threads) {
@@ -112,11 +84,11 @@ int main(int argc, char** argv) {
   std::printf("%8s %12s %12s %8s %12s %10s\n", "images", "decode [s]", "texture [s]", "ratio", "peak [MiB]", "Mtexels");
   for (const int factor : {1, 2}) {
     const fs::path dive = root / ("dive_" + std::to_string(factor));
-    InChild([&] {
+    bench::InChild<Measurement>([&] {
       SimulateTextureDive(dive, factor * lines, images_per_line, num_threads);
       return Measurement{};
     });
-    const Measurement m = InChild([&] { return Texture(dive / "W", num_threads); });
+    const Measurement m = bench::InChild<Measurement>([&] { return Texture(dive / "W", num_threads); });
     std::printf("%8d %12.2f %12.2f %8.1f %12.0f %10.1f\n", factor * lines * images_per_line, m.decode_seconds,
                 m.seconds, m.seconds / m.decode_seconds, m.peak_mib, m.texels / 1e6);
     std::fflush(stdout);

@@ -16,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "colmap_integration/io/confidence_map_io.h"
+#include "colmap_integration/stages/map_previews.h"
 #include "colmap_integration/stages/restore_workspace.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/stages/stage_record.h"
@@ -316,6 +317,30 @@ void TextureSection(std::ostream& html, PictureEmbedder& pictures, const Workspa
   html << "</div>\n";
 }
 
+void MosaicSection(std::ostream& html, PictureEmbedder& pictures, const Workspace& workspace) {
+  html << "<h2>Mosaic</h2>\n";
+  const fs::path ortho = workspace.OrthomosaicPath(), dem = workspace.DemPath();
+  if (!fs::exists(ortho)) {
+    html << "<p class=\"missing\">No orthomosaic at " << Escape(ortho.string()) << ".</p>\n";
+    return;
+  }
+  const MapPreview colours = OrthomosaicPreview(ortho, 1024);
+  html << "<p>" << Escape(ortho.string()) << (fs::exists(dem) ? " and " + Escape(dem.string()) : std::string())
+       << ": Cloud-Optimized GeoTIFFs, north up, in "
+       << (colours.crs_name.empty() ? std::string("the model's own frame (no CRS)") : Escape(colours.crs_name))
+       << " (open them in QGIS: Layer › Add Layer › Add Raster Layer). Grey: no image sees the surface there."
+       << "</p><div class=\"row\">\n";
+  html << "<figure>" << pictures.Image(colours.bgr8, "orthomosaic", true) << "<figcaption>orthomosaic (shown at "
+       << std::setprecision(3) << colours.metres_per_pixel << " m per pixel)</figcaption></figure>\n";
+  if (fs::exists(dem)) {
+    const MapPreview heights = DemPreview(dem, 1024);
+    html << "<figure>" << pictures.Image(heights.bgr8, "DEM", false) << "<figcaption>DEM: " << std::fixed
+         << std::setprecision(3) << heights.low << " m (dark blue) to " << heights.high << " m (yellow)"
+         << std::defaultfloat << "</figcaption></figure>\n";
+  }
+  html << "</div>\n";
+}
+
 }  // namespace
 
 void ReportOptions::Check() const {
@@ -351,6 +376,7 @@ ReportSummary WriteReport(const ReportOptions& options) {
   CalibrationSection(html, pictures, lut);
   RestorationSection(html, pictures, workspace, options);
   TextureSection(html, pictures, workspace);
+  MosaicSection(html, pictures, workspace);
   html << "</body></html>\n";
 
   ReportSummary summary;

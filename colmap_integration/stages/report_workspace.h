@@ -7,7 +7,8 @@
 //     histograms per constraint type and channel, the LUT's alpha and beta per slab and channel, and the
 //     coverage of every slab by calibration data;
 //   - restoration: a sample of images before and after, with their confidence maps;
-//   - texture: the atlas pages of the textured model (model.glb).
+//   - texture: the atlas pages of the textured model (model.glb);
+//   - mosaic: the orthomosaic and the DEM, north up, with scale bars (map_previews.h).
 // Parts that are missing (a stage not run yet) say so instead of failing.
 
 #include <cstddef>

@@ -272,14 +272,16 @@ TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
   std::cout << "lutex run on the small example: restored albedo MAE " << mae << " pp\n";
   EXPECT_LT(mae, 5.0);
 
+  EXPECT_TRUE(fs::exists(workspace / "lutex" / "mosaic" / "ortho.tif"));
+  EXPECT_TRUE(fs::exists(workspace / "lutex" / "mosaic" / "dem.tif"));
   const testing::GltfValidation validation = testing::ValidateGltf(workspace / "lutex" / "model.glb");
   if (validation.ran) {
     EXPECT_TRUE(validation.valid) << validation.output;
   }
   const std::string report = ReadBytes(workspace / "lutex" / "report" / "index.html");
   for (const char* part : {"<h2>Run</h2>", "<h2>Calibration</h2>", "water prior: attenuation of the signal", "The LUT",
-                           "<h2>Restoration</h2>", "<h2>Texture</h2>",
-                           "data:image/png;base64,", "data:image/jpeg;base64,", "<svg"}) {
+                           "<h2>Restoration</h2>", "<h2>Texture</h2>", "<h2>Mosaic</h2>", "title=\"orthomosaic\"",
+                           "title=\"DEM\"", "data:image/png;base64,", "data:image/jpeg;base64,", "<svg"}) {
     EXPECT_NE(report.find(part), std::string::npos) << part;
   }
   for (const char* fetch : {"src=\"http", "href=\"http", "url(http", "<script"}) {
@@ -314,7 +316,7 @@ TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
   const auto lut_time = fs::last_write_time(workspace / "lutex" / "calibration" / "lut.lut");
   const testing::CommandResult second = Run(workspace);
   ASSERT_EQ(second.exit_code, 0) << second.output;
-  for (const char* stage : {"calibrate", "restore", "texture"}) {
+  for (const char* stage : {"calibrate", "restore", "texture", "mosaic"}) {
     EXPECT_NE(second.output.find(std::string("[") + stage + ": up to date"), std::string::npos) << second.output;
   }
   EXPECT_EQ(fs::last_write_time(workspace / "lutex" / "model.glb"), model_time);

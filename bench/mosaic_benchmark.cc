@@ -1,0 +1,105 @@
+// The mosaic of a synthetic dive as its surveyed area doubles and quadruples: a lawnmower survey at 2 m
+// altitude (640 x 480, 8-bit sRGB PNG, 1 m between images, 3 lines 2 m apart) over a seafloor 6 m wide and
+// 10, 20 or 40 m long (2 cm mesh cells: 0.3, 0.6, 1.2 M faces), mapped at 5 mm. For each: `lutex mosaic`
+// time per output megapixel and peak memory (resident set, in a child process that does nothing else),
+// against plain decoding of the same images in the same run. Not a test.
+//
+//   mosaic_benchmark [--num-threads 0] [--tile-size 1024]
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "bench/bench_dive.h"
+#include "bench/bench_options.h"
+#include "bench/measure_in_child.h"
+#include "colmap_integration/io/sparse_model_io.h"
+#include "colmap_integration/stages/mosaic_workspace.h"
+#include "lib/image/image_io.h"
+#include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Measurement {
+  double seconds = 0.0;
+  double peak_mib = 0.0;
+  double decode_seconds = 0.0;
+  double megapixels = 0.0;
+  double tiles = 0.0;
+  double image_reads = 0.0;
+  double images = 0.0;
+};
+
+void SimulateMosaicDive(const fs::path& root, double length, int num_threads) {
+  const int images_per_line = static_cast<int>(length);
+  lutex::bench::SimulateDive(
+      root,
+      R"({"synthetic": {"size": [)" + std::to_string(length + 2.0) + R"(, 6], "cell_size": 0.02, "relief": 0.2}})",
+      R"({"model": "PINHOLE", "width": 640, "height": 480, "params": [400, 400, 320, 240]})",
+      R"({"pattern": "lawnmower", "x": [)" + std::to_string(-0.5 * (length - 1.0)) + ", " +
+          std::to_string(0.5 * (length - 1.0)) + R"(], "y": [-2, 2], "lines": 3, "images_per_line": )" +
+          std::to_string(images_per_line) + R"(, "altitude": 2})",
+      num_threads);
+}
+
+Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size) {
+  using namespace lutex;
+  Measurement measurement;
+  const SparseModel model = ReadSparseModel(workspace / "sparse" / "0");
+  std::vector<std::string> names;
+  for (const auto& [id, image] : model.images) names.push_back(image.name);
+  auto start = std::chrono::steady_clock::now();
+  ParallelFor(names.size(), num_threads,
+              [&](std::size_t i) { ReadLinearImage(workspace / "images" / names[i], ImageEncoding::kSrgb8); });
+  measurement.decode_seconds = bench::SecondsSince(start);
+  MosaicOptions options;
+  options.workspace = workspace;
+  options.mesh = workspace / "scene" / "mesh.ply";
+  options.views.images = workspace / "images";
+  options.gsd = 0.005;
+  options.output = workspace / "ortho.tif";
+  options.dem = workspace / "dem.tif";
+  options.ortho.tile_size = tile_size;
+  options.ortho.baking.num_threads = num_threads;
+  start = std::chrono::steady_clock::now();
+  const MosaicSummary summary = MosaicWorkspace(options);
+  measurement.seconds = bench::SecondsSince(start);
+  measurement.megapixels = double(summary.mosaic.num_cells) / 1e6;
+  measurement.tiles = double(summary.mosaic.num_tiles);
+  measurement.image_reads = double(summary.mosaic.tile_view_reads);
+  measurement.images = double(names.size());
+  return measurement;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lutex;
+  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  const int tile_size = bench::IntOption(argc, argv, "--tile-size", 1024);
+  SetLogLevel(LogLevel::kWarning);
+  const fs::path root = fs::temp_directory_path() / "lutex_mosaic_benchmark";
+  fs::remove_all(root);
+  std::printf("mosaic benchmark: %d threads, tiles of %d pixels, 5 mm GSD\n", num_threads, tile_size);
+  std::printf("%6s %7s %8s %6s %7s %11s %11s %13s %8s %11s\n", "area", "images", "Mpixels", "tiles", "reads",
+              "decode [s]", "mosaic [s]", "s/Mpixel", "ratio", "peak [MiB]");
+  for (const int factor : {1, 2, 4}) {
+    const fs::path dive = root / ("dive_" + std::to_string(factor));
+    bench::InChild<Measurement>([&] {
+      SimulateMosaicDive(dive, 10.0 * factor, num_threads);
+      return Measurement{};
+    });
+    const Measurement m = bench::InChild<Measurement>([&] { return Mosaic(dive / "W", num_threads, tile_size); });
+    std::printf("%5dx %7.0f %8.1f %6.0f %7.0f %11.2f %11.2f %13.3f %8.1f %11.0f\n", factor, m.images, m.megapixels,
+                m.tiles, m.image_reads, m.decode_seconds, m.seconds, m.seconds / m.megapixels,
+                m.seconds / m.decode_seconds, m.peak_mib);
+    std::fflush(stdout);
+    fs::remove_all(dive);
+  }
+  fs::remove_all(root);
+  return 0;
+}
