@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs everything lutex needs to build and test on Debian 12 (bookworm): C++ libraries and tools from
-# Debian's archive (Chromium renders lutex's HTML report in a test), and the Khronos glTF-Validator (which
-# checks lutex's GLB output) from the npm registry, pinned by scripts/gltf_validator/package-lock.json. Idempotent: what is present is left as it is.
+# Debian's archive (Chromium renders lutex's HTML report and its GLB in tests), and from the npm registry the
+# Khronos glTF-Validator (which checks lutex's GLB output), pinned by scripts/gltf_validator/package-lock.json,
+# and three.js (which renders the GLB in Chromium), pinned by scripts/threejs_viewer/package-lock.json.
+# Idempotent: what is present is left as it is.
 # Run as root (or through sudo).
 set -euo pipefail
 
@@ -23,7 +25,7 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
-# Node.js and npm for the glTF validator: the machine's own when present, else Debian's.
+# Node.js and npm for the glTF validator and three.js: the machine's own when present, else Debian's.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   missing+=(nodejs npm)
 fi
@@ -43,4 +45,10 @@ validator_dir="$(dirname "$0")/gltf_validator"
 if [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]; then
   echo "install_dependencies: installing the glTF validator (npm ci in $validator_dir)"
   npm ci --prefix "$validator_dir" --no-audit --no-fund --loglevel=error
+fi
+
+viewer_dir="$(dirname "$0")/threejs_viewer"
+if [ ! -f "$viewer_dir/node_modules/three/package.json" ]; then
+  echo "install_dependencies: installing three.js (npm ci in $viewer_dir)"
+  npm ci --prefix "$viewer_dir" --no-audit --no-fund --loglevel=error
 fi

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "colmap_integration/cli/calibrate_command.h"
+#include "colmap_integration/cli/mesh_command.h"
 #include "colmap_integration/cli/mosaic_command.h"
 #include "colmap_integration/cli/raycast_command.h"
 #include "colmap_integration/cli/report_command.h"
@@ -25,6 +26,7 @@ struct Command {
 
 const Command kCommands[] = {
     {"calibrate", &lutex::RunCalibrateCommand, "fit the LUT from known-colour targets and/or correspondences (+ pure water)"},
+    {"mesh", &lutex::RunMeshCommand, "a mesh of the scene from the sparse model (2.5-D height field), without a GPU"},
     {"mosaic", &lutex::RunMosaicCommand, "a georeferenced orthomosaic and DEM of the seafloor as Cloud-Optimized GeoTIFFs"},
     {"raycast", &lutex::RunRaycastCommand, "per-image depth and normal maps of a mesh (COLMAP .bin + previews)"},
     {"report", &lutex::RunReportCommand, "an HTML page about a workspace's LUT, residuals, restored images, texture"},

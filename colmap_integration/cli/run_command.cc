@@ -6,6 +6,7 @@
 #include "colmap_integration/cli/calibrate_command.h"
 #include "colmap_integration/cli/dive_options.h"
 #include "colmap_integration/cli/image_encoding_option.h"
+#include "colmap_integration/cli/mesh_command.h"
 #include "colmap_integration/cli/mosaic_command.h"
 #include "colmap_integration/cli/restore_command.h"
 #include "colmap_integration/cli/texture_command.h"
@@ -34,7 +35,10 @@ int RunRunCommand(int argc, char** argv) {
       "run. Change an input or an option and the stages that depend on it run again. Every option below can\n"
       "also come from --config FILE.");
   parser.SetGroup("run");
-  AddDiveOptions(parser, &options.workspace, &options.mesh);
+  parser.AddPath("workspace", &options.workspace, "COLMAP workspace (images/, sparse/0 or sparse/).", true);
+  parser.AddPath("mesh", &options.mesh,
+                 "Mesh of W's scene in the model's world frame (.ply, .obj, .off, .stl); without it, a dense\n"
+                 "      workspace's W/dense/N/meshed-*.ply, else one made from the sparse model (lutex mesh).");
   AddImageEncodingOption(parser, "input-encoding", &options.input_encoding, "How W's images are encoded:");
   parser.AddPath("lut", &options.lut, "A LUT calibrated before: skips the calibrate stage.");
   parser.AddFlag("depth-maps", &options.raycast_maps,
@@ -42,6 +46,8 @@ int RunRunCommand(int argc, char** argv) {
   parser.AddFlag("force", &options.force, "Run every stage, even those that are up to date.");
   parser.AddFlag("report", &options.report, "Write the HTML report at the end (--no-report to skip).");
   AddThreadsOption(parser, &options.num_threads);
+  parser.SetGroup("mesh");
+  AddMeshStageOptions(parser, &options.mesh_options);
   parser.SetGroup("calibrate");
   AddCalibrateStageOptions(parser, &options.calibrate);
   parser.SetGroup("restore");
@@ -53,7 +59,7 @@ int RunRunCommand(int argc, char** argv) {
   AddMosaicStageOptions(parser, &options.mosaic);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {
-    for (const char* stage : {"calibrate", "restore", "texture", "mosaic"}) options.stage_settings[stage] = parser.Settings(stage);
+    for (const char* stage : {"mesh", "calibrate", "restore", "texture", "mosaic"}) options.stage_settings[stage] = parser.Settings(stage);
 
     const RunSummary summary = RunWorkspace(options);
     std::cout << "\nlutex run: done in " << std::fixed << std::setprecision(1) << summary.seconds << " s\n";
@@ -62,7 +68,9 @@ int RunRunCommand(int argc, char** argv) {
       if (stage.status != "not needed") std::cout << ", " << stage.seconds << " s";
       std::cout << "]\n" << stage.summary;
     }
-    std::cout << "\nOutputs:\n"
+    std::cout << "\nOutputs:\n";
+    if (!summary.mesh.empty()) std::cout << "  mesh:            " << summary.mesh.string() << "\n";
+    std::cout
               << "  LUT:             " << summary.lut.string() << "\n"
               << "  restored images: " << summary.restored.string() << "\n"
               << "  confidence maps: " << summary.confidence.string() << "\n"

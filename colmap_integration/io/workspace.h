@@ -39,6 +39,7 @@ struct Workspace {
   // The default outputs under OutputDir(), stated once for the commands that write them and those that
   // read them (run, report).
   std::filesystem::path RaycastDir() const { return OutputDir() / "raycast"; }
+  std::filesystem::path MeshPath() const { return OutputDir() / "mesh" / "mesh.ply"; }
   std::filesystem::path LutPath() const { return OutputDir() / "calibration" / "lut.lut"; }
   std::filesystem::path RestoredDir() const { return OutputDir() / "restored"; }
   std::filesystem::path ModelPath() const { return OutputDir() / "model.glb"; }

@@ -112,13 +112,39 @@ class DiveRun {
  public:
   explicit DiveRun(const RunOptions& options)
       : options_(options), workspace_(FindWorkspace(options.workspace)),
-        runner_(workspace_.RunRecordsDir(), options.force) {}
+        runner_(workspace_.RunRecordsDir(), options.force), mesh_(options.mesh) {}
+
+  // Without --mesh: a dense workspace's own mesh, else one from the sparse model (lutex mesh).
+  void Mesh() {
+    if (!mesh_.empty()) return;
+    const fs::path dense = DenseMeshOf(workspace_);
+    if (!dense.empty()) {
+      mesh_ = dense;
+      summary_.stages.push_back({"mesh", "not needed", 0.0, "mesh: the dense workspace's own, " + dense.string() + "\n"});
+      summary_.mesh = mesh_;
+      return;
+    }
+    MeshOptions mesh = options_.mesh_options;
+    mesh.workspace = options_.workspace;
+    mesh.output = workspace_.MeshPath();
+    mesh.georeference = options_.mosaic.georeference;
+    StageRecord record("mesh");
+    AddSettings(&record, options_);
+    AddModel(&record, workspace_);
+    if (fs::exists(workspace_.GeoreferencePath())) record.AddFileContents(workspace_.GeoreferencePath());
+    record.AddOutput(mesh.output);
+    summary_.stages.push_back(runner_.Run(record, {mesh.output.parent_path()}, [&](bool) {
+      return SummaryText(MeshWorkspace(mesh), PrintMeshSummary);
+    }));
+    mesh_ = mesh.output;
+    summary_.mesh = mesh_;
+  }
 
   // With depth_maps only: COLMAP depth and normal maps in W/lutex/raycast.
   void Raycast() {
     RaycastOptions raycast = options_.raycast;
     raycast.workspace = options_.workspace;
-    raycast.mesh = options_.mesh;
+    raycast.mesh = mesh_;
     raycast.output = workspace_.RaycastDir();
     raycast.num_threads = options_.num_threads;
     StageRecord record = BaseRecord("raycast");
@@ -135,7 +161,7 @@ class DiveRun {
     if (options_.lut.empty()) {
       CalibrateOptions calibrate = options_.calibrate;
       calibrate.workspace = options_.workspace;
-      calibrate.mesh = options_.mesh;
+      calibrate.mesh = mesh_;
       calibrate.output = summary_.lut;
       calibrate.input_encoding = options_.input_encoding;
       calibrate.num_threads = options_.num_threads;
@@ -164,7 +190,7 @@ class DiveRun {
   void Restore() {
     RestoreOptions restore = options_.restore;
     restore.workspace = options_.workspace;
-    restore.mesh = options_.mesh;
+    restore.mesh = mesh_;
     restore.lut = summary_.lut;
     restore.output = workspace_.RestoredDir();
     restore.input_encoding = options_.input_encoding;
@@ -189,7 +215,7 @@ class DiveRun {
   void Texture() {
     TextureOptions texture = options_.texture;
     texture.workspace = options_.workspace;
-    texture.mesh = options_.mesh;
+    texture.mesh = mesh_;
     texture.views = TextureViews();
     texture.georeference = options_.mosaic.georeference;
     texture.output = workspace_.ModelPath();
@@ -210,7 +236,7 @@ class DiveRun {
   void Mosaic() {
     MosaicOptions mosaic = options_.mosaic;
     mosaic.workspace = options_.workspace;
-    mosaic.mesh = options_.mesh;
+    mosaic.mesh = mesh_;
     mosaic.views = TextureViews();
     mosaic.output = workspace_.OrthomosaicPath();
     mosaic.dem = workspace_.DemPath();
@@ -270,13 +296,13 @@ class DiveRun {
     StageRecord record(stage);
     AddSettings(&record, options_);
     AddModel(&record, workspace_);
-    record.AddFile(options_.mesh);
+    record.AddFile(mesh_);
     return record;
   }
 
   // The model, mesh and ray-casting scene, loaded by the first stage that runs and shared by the others.
   const LoadedDive& Dive() {
-    if (!loaded_) loaded_ = std::make_unique<LoadedDive>(options_.workspace, options_.mesh);
+    if (!loaded_) loaded_ = std::make_unique<LoadedDive>(options_.workspace, mesh_);
     return *loaded_;
   }
 
@@ -285,6 +311,7 @@ class DiveRun {
   StageRunner runner_;
   RunSummary summary_;
   std::unique_ptr<LoadedDive> loaded_;
+  fs::path mesh_;  // --mesh, or the one the mesh stage found or made
 };
 
 // What the whole run reads and writes (output_policy.h), checked before the first stage starts: the stages
@@ -293,6 +320,7 @@ InputsAndOutputs RunPaths(const RunOptions& options, const Workspace& workspace)
   InputsAndOutputs paths;
   paths.AddWorkspace(workspace, "the workspace");
   paths.AddInput(options.mesh, "the mesh");
+  if (options.mesh.empty()) paths.AddOutput(workspace.MeshPath());
   paths.AddInput(options.lut, "the LUT");
   AddCalibrationSources(options.calibrate, &paths);
   paths.AddOutput(workspace.RunRecordsDir());
@@ -314,7 +342,6 @@ InputsAndOutputs RunPaths(const RunOptions& options, const Workspace& workspace)
 
 void RunOptions::Check() const {
   if (workspace.empty()) throw OptionError("{workspace} is required");
-  if (mesh.empty()) throw OptionError("{mesh} is required");
   if (lut.empty() && calibrate.targets.empty() && calibrate.chessboard.empty() && !calibrate.correspondences) {
     throw OptionError(
         "nothing to calibrate from: give {targets} or {chessboard} (known colours), {correspondences} (with "
@@ -326,10 +353,13 @@ RunSummary RunWorkspace(const RunOptions& options) {
   options.Check();
   const auto start = std::chrono::steady_clock::now();
   DiveRun run(options);
-  if (!fs::exists(options.mesh)) throw std::runtime_error(options.mesh.string() + ": no such mesh file");
+  if (!options.mesh.empty() && !fs::exists(options.mesh)) {
+    throw std::runtime_error(options.mesh.string() + ": no such mesh file");
+  }
   RunPaths(options, run.workspace()).Check();
   // One writer per workspace: a second run would take the first one's records for an interrupted run.
   const ExclusiveFileLock lock(run.workspace().OutputDir() / ".lock", run.workspace().root.string());
+  run.Mesh();
   if (options.raycast_maps) run.Raycast();
   run.Calibrate();
   run.Restore();

@@ -2,6 +2,8 @@
 
 // `lutex run`: the whole pipeline on one COLMAP workspace, everything under W/lutex/:
 //
+//   mesh        (only without a mesh)    mesh/          mesh.ply from the sparse model (lutex mesh), unless
+//                                                       a dense workspace has its own (W/dense/N/meshed-*.ply)
 //   raycast     (only with raycast_maps) raycast/       depth and normal maps in COLMAP's format
 //   calibrate   (unless a LUT is given)  calibration/   lut.lut, coverage.lut, calibration_summary.json, slabs/
 //   restore                              restored/, restored_confidence/
@@ -24,6 +26,7 @@
 #include <vector>
 
 #include "colmap_integration/stages/calibrate_workspace.h"
+#include "colmap_integration/stages/mesh_workspace.h"
 #include "colmap_integration/stages/mosaic_workspace.h"
 #include "colmap_integration/stages/raycast_workspace.h"
 #include "colmap_integration/stages/restore_workspace.h"
@@ -33,7 +36,8 @@ namespace lutex {
 
 struct RunOptions {
   std::filesystem::path workspace;
-  std::filesystem::path mesh;
+  std::filesystem::path mesh;  // empty: the mesh stage finds or makes one
+  MeshOptions mesh_options;     // how, without a dense workspace's mesh
   ImageEncoding input_encoding = ImageEncoding::kSrgb8;
   // A LUT calibrated before (e.g. from the rig's calibration dive) instead of the calibrate stage; its
   // coverage.lut beside it is used when present.
@@ -69,6 +73,7 @@ struct RunStageSummary {
 
 struct RunSummary {
   std::vector<RunStageSummary> stages;
+  std::filesystem::path mesh;  // the one the mesh stage found or made; empty when given
   std::filesystem::path lut;
   std::filesystem::path restored;
   std::filesystem::path confidence;

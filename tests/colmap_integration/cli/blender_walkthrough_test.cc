@@ -5,6 +5,7 @@
 // estimated poses. The GLB validates; the restored images and the texture (rendered back into the true
 // cameras) are compared with the true albedo. Skips without the datasets or COLMAP.
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -12,8 +13,11 @@
 #include <gtest/gtest.h>
 
 #include "colmap_integration/io/sparse_model_io.h"
+#include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/restore_workspace.h"
+#include "lib/geometry/mesh_io.h"
 #include "lib/image/image_io.h"
+#include "lib/raycast/raycast_scene.h"
 #include "tests/support/shared_datasets.h"
 #include "tests/support/blender_render_back.h"
 #include "tests/support/gltf_validator.h"
@@ -123,6 +127,53 @@ TEST(BlenderWalkthrough, ColmapFromScratchThenLutexRunGivesTrueColour) {
   EXPECT_LT(restored_error, 6.0);  // 3.8 with the true poses
   EXPECT_LT(back.mae, 6.0);        // 3.1 with the true poses
   EXPECT_GT(back.textured_pixels, 0.95);
+
+  // 5. Without a GPU there is no dense mesh: lutex run without --mesh makes one from COLMAP's sparse points
+  // (lutex mesh) and restores with it, with the LUT of the first run. Its depth in the true cameras against
+  // gt/depth, and the restored images against those of the true mesh.
+  const fs::path lut = dir.path() / "lut.lut";
+  fs::copy_file(workspace / "lutex" / "calibration" / "lut.lut", lut);
+  fs::copy_file(CoverageLutPath(workspace / "lutex" / "calibration" / "lut.lut"), CoverageLutPath(lut));
+  const testing::CommandResult sparse_run = testing::RunCommand(
+      std::string(LUTEX_BINARY) + " run --workspace " + workspace.string() + " --lut " + lut.string() +
+      " --input-encoding linear16 --no-report --no-mosaic --num-threads 2 --log-level warning");
+  ASSERT_EQ(sparse_run.exit_code, 0) << sparse_run.output;
+  EXPECT_NE(sparse_run.output.find("[mesh: done"), std::string::npos) << sparse_run.output;
+  std::cout << sparse_run.output.substr(sparse_run.output.find("[mesh: done"),
+                                        sparse_run.output.find("[calibrate") - sparse_run.output.find("[mesh: done"));
+  const RaycastScene scene(ReadMesh(workspace / "lutex" / "mesh" / "mesh.ply"));
+  std::vector<double> relative_errors;
+  std::size_t surface_pixels = 0, covered = 0;
+  for (const auto& [id, image] : truth.images) {
+    const CameraRays rays(truth.cameras.at(image.camera_id));
+    const GeometryMaps maps = scene.Render(rays, image.cam_from_world);
+    const cv::Mat depth =
+        ReadLinearImage(survey / "gt" / "depth" / (fs::path(image.name).stem().string() + ".exr"), ImageEncoding::kFloat);
+    ASSERT_FALSE(depth.empty());
+    for (int row = 0; row < depth.rows; ++row) {
+      for (int col = 0; col < depth.cols; ++col) {
+        const double expected = depth.at<cv::Vec3f>(row, col)[0];
+        if (!(expected > 0.0)) continue;
+        ++surface_pixels;
+        const double found = maps.depth.at<float>(row, col);
+        if (!std::isfinite(found)) continue;
+        ++covered;
+        relative_errors.push_back(std::abs(found - expected) / expected);
+      }
+    }
+  }
+  ASSERT_FALSE(relative_errors.empty());
+  std::sort(relative_errors.begin(), relative_errors.end());
+  const double median = relative_errors[relative_errors.size() / 2];
+  const double p95 = relative_errors[relative_errors.size() * 95 / 100];
+  const double coverage = double(covered) / double(surface_pixels);
+  const double sparse_mesh_error = RestoredError(workspace / "lutex" / "restored", survey, estimated);
+  std::cout << "lutex mesh from the sparse model: depth error median " << 100.0 * median << " %, p95 " << 100.0 * p95
+            << " %, " << 100.0 * coverage << " % of the surface pixels covered; restored MAE " << sparse_mesh_error
+            << " pp (true mesh " << restored_error << ")\n";
+  EXPECT_LT(median, 0.01);  // the goals
+  EXPECT_GT(coverage, 0.98);
+  EXPECT_LT(sparse_mesh_error, restored_error + 0.5);
 }
 
 }  // namespace
