@@ -49,13 +49,7 @@ void SimulateMosaicDive(const fs::path& root, double length, int num_threads) {
 Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size) {
   using namespace lutex;
   Measurement measurement;
-  const SparseModel model = ReadSparseModel(workspace / "sparse" / "0");
-  std::vector<std::string> names;
-  for (const auto& [id, image] : model.images) names.push_back(image.name);
-  auto start = std::chrono::steady_clock::now();
-  ParallelFor(names.size(), num_threads,
-              [&](std::size_t i) { ReadLinearImage(workspace / "images" / names[i], ImageEncoding::kSrgb8); });
-  measurement.decode_seconds = bench::SecondsSince(start);
+  measurement.decode_seconds = bench::DecodeSeconds(workspace, num_threads);
   MosaicOptions options;
   options.workspace = workspace;
   options.mesh = workspace / "scene" / "mesh.ply";
@@ -65,13 +59,13 @@ Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size) {
   options.dem = workspace / "dem.tif";
   options.ortho.tile_size = tile_size;
   options.ortho.baking.num_threads = num_threads;
-  start = std::chrono::steady_clock::now();
+  const auto start = std::chrono::steady_clock::now();
   const MosaicSummary summary = MosaicWorkspace(options);
   measurement.seconds = bench::SecondsSince(start);
   measurement.megapixels = double(summary.mosaic.num_cells) / 1e6;
   measurement.tiles = double(summary.mosaic.num_tiles);
   measurement.image_reads = double(summary.mosaic.tile_view_reads);
-  measurement.images = double(names.size());
+  measurement.images = double(summary.mosaic.num_views);
   return measurement;
 }
 

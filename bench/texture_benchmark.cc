@@ -47,20 +47,14 @@ void SimulateTextureDive(const fs::path& root, int lines, int images_per_line, i
 Measurement Texture(const fs::path& workspace, int num_threads) {
   using namespace lutex;
   Measurement measurement;
-  const SparseModel model = ReadSparseModel(workspace / "sparse" / "0");
-  std::vector<std::string> names;
-  for (const auto& [id, image] : model.images) names.push_back(image.name);
-  auto start = std::chrono::steady_clock::now();
-  ParallelFor(names.size(), num_threads,
-              [&](std::size_t i) { ReadLinearImage(workspace / "images" / names[i], ImageEncoding::kSrgb8); });
-  measurement.decode_seconds = bench::SecondsSince(start);
+  measurement.decode_seconds = bench::DecodeSeconds(workspace, num_threads);
   TextureOptions options;
   options.workspace = workspace;
   options.mesh = workspace / "scene" / "mesh.ply";
   options.views.images = workspace / "images";
   options.output = workspace / "model.glb";
   options.baking.num_threads = num_threads;
-  start = std::chrono::steady_clock::now();
+  const auto start = std::chrono::steady_clock::now();
   const TextureSummary summary = TextureWorkspace(options);
   measurement.seconds = bench::SecondsSince(start);
   measurement.texels = static_cast<double>(summary.baking.page_texels);
