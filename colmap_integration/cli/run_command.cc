@@ -17,10 +17,12 @@ namespace lutex {
 int RunRunCommand(int argc, char** argv) {
   RunOptions options;
   OptionParser parser(
-      "lutex run --workspace W --mesh M [--targets T [--targets-workspace W2 --targets-mesh M2]]\n"
+      "lutex run --workspace W [--mesh M] [--targets T [--targets-workspace W2 --targets-mesh M2]]\n"
       "          [--pure-water W3] [--correspondences [--grey-world V]] [--in-air] [--config FILE]",
       "Runs the whole pipeline on the COLMAP workspace W with the mesh M of its scene (in the model's world\n"
       "frame) and writes everything under W/lutex/:\n"
+      "  mesh       only without --mesh: a dense workspace's W/dense/N/meshed-*.ply, else a 2.5-D surface\n"
+      "             from the sparse model (options as lutex mesh)            -> mesh/mesh.ply\n"
       "  calibrate  the LUT of light and water from known-colour targets, correspondences between W's images\n"
       "             and/or pure-water images (options as lutex calibrate)   -> calibration/lut.lut\n"
       "  restore    every image restored to albedo, with confidence maps   -> restored/, restored_confidence/\n"

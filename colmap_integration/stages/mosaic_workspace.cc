@@ -154,8 +154,11 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
     throw std::runtime_error("mosaic: no image sees the mesh's surface from above; nothing to map");
   }
   const int threads = ResolveNumThreads(options.ortho.baking.num_threads);
-  ortho.Finish(threads);
-  if (dem) dem->Finish(threads);
+  // Both converted before either is renamed: a failure leaves neither new file beside an old one.
+  ortho.Convert(threads);
+  if (dem) dem->Convert(threads);
+  ortho.Commit();
+  if (dem) dem->Commit();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

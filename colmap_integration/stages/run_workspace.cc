@@ -130,6 +130,7 @@ class DiveRun {
     mesh.georeference = options_.mosaic.georeference;
     StageRecord record("mesh");
     AddSettings(&record, options_);
+    record.AddSetting("georeference", ResolveGeoreference(mesh.georeference, workspace_).georeference.Describe());
     AddModel(&record, workspace_);
     if (fs::exists(workspace_.GeoreferencePath())) record.AddFileContents(workspace_.GeoreferencePath());
     record.AddOutput(mesh.output);

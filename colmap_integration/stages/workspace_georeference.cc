@@ -20,7 +20,10 @@ void GeoreferenceOptions::Check() const {
   }
 }
 
-WorkspaceGeoreference ResolveGeoreference(const GeoreferenceOptions& options, const Workspace& workspace) {
+namespace {
+
+// The options' georeference, else the file's, else none.
+WorkspaceGeoreference ResolveGiven(const GeoreferenceOptions& options, const Workspace& workspace) {
   options.Check();
   WorkspaceGeoreference resolved;
   Georeference& georeference = resolved.georeference;
@@ -50,6 +53,24 @@ WorkspaceGeoreference ResolveGeoreference(const GeoreferenceOptions& options, co
   }
   resolved.source = "none";
   return resolved;
+}
+
+}  // namespace
+
+WorkspaceGeoreference ResolveGeoreference(const GeoreferenceOptions& options, const Workspace& workspace) {
+  // --crs alone on a workspace whose file says ENU chooses the maps' CRS of that frame; it does not
+  // declare the model projected at origin 0.
+  if (!options.crs.empty() && options.crs_origin.empty() && options.enu_origin.empty()) {
+    const std::filesystem::path file = workspace.GeoreferencePath();
+    if (std::filesystem::exists(file)) {
+      WorkspaceGeoreference resolved{ReadGeoreference(file), file.string() + " with the map CRS of the options"};
+      if (resolved.georeference.frame == Georeference::Frame::kEnu) {
+        resolved.georeference.crs = options.crs;
+        return resolved;
+      }
+    }
+  }
+  return ResolveGiven(options, workspace);
 }
 
 }  // namespace lutex

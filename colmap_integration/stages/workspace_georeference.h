@@ -7,6 +7,7 @@
 //                                   --crs-origin: the model is in C's coordinates already)
 //   --enu-origin LAT,LON,H [--crs C]   a local ENU frame at that point; map products in C, else the
 //                                   origin's UTM zone
+//   --crs C alone on a workspace whose W/georef.json is ENU: that frame, with its maps in C
 //   neither                         W/georef.json when it exists, else none (the model's own frame)
 
 #include <string>

@@ -25,10 +25,6 @@ struct Options {
   }
 };
 
-fs::path StagingPath(const fs::path& destination) {
-  return destination.parent_path() / (destination.stem().string() + ".staging.tif");
-}
-
 int BandsOf(GeoRasterKind kind) { return kind == GeoRasterKind::kFloat32 ? 1 : 4; }
 
 GDALDataType TypeOf(GeoRasterKind kind) {
@@ -58,7 +54,7 @@ std::string LastGdalError() {
 
 CogWriter::CogWriter(const fs::path& destination, const GeoRasterGrid& grid, GeoRasterKind kind,
                      std::size_t cache_bytes)
-    : grid_(grid), kind_(kind), output_(destination), staging_(StagingPath(destination)) {
+    : grid_(grid), kind_(kind), output_(destination), staging_(output_.temporary_path().string() + ".staging.tif") {
   if (grid.width <= 0 || grid.height <= 0 || !(grid.gsd > 0.0)) {
     throw std::invalid_argument(destination.string() + ": empty raster grid");
   }
@@ -72,14 +68,19 @@ CogWriter::CogWriter(const fs::path& destination, const GeoRasterGrid& grid, Geo
   if (kind != GeoRasterKind::kFloat32) options.Set("PHOTOMETRIC", "RGB").Set("ALPHA", "YES");
   CPLErrorReset();
   CPLPushErrorHandler(CPLQuietErrorHandler);
-  dataset_ = GDALCreate(gtiff, staging_.temporary_path().c_str(), grid.width, grid.height, BandsOf(kind),
+  dataset_ = GDALCreate(gtiff, staging_.c_str(), grid.width, grid.height, BandsOf(kind),
                         TypeOf(kind), options.list);
   CPLPopErrorHandler();
-  if (!dataset_) Fail("cannot create the staging file " + staging_.temporary_path().string());
+  if (!dataset_) Fail("cannot create the staging file " + staging_.string());
   double geotransform[6] = {grid.west, grid.gsd, 0.0, grid.north, 0.0, -grid.gsd};
   GDALSetGeoTransform(dataset_, geotransform);
   if (!grid.crs_wkt.empty() && GDALSetProjection(dataset_, grid.crs_wkt.c_str()) != CE_None) {
-    Fail("GDAL does not take the CRS: " + LastGdalError());
+    const std::string reason = LastGdalError();
+    GDALClose(dataset_);
+    dataset_ = nullptr;
+    std::error_code ignored;
+    fs::remove(staging_, ignored);
+    Fail("GDAL does not take the CRS: " + reason);
   }
   if (kind == GeoRasterKind::kFloat32) {
     GDALSetRasterNoDataValue(GDALGetRasterBand(dataset_, 1), std::numeric_limits<double>::quiet_NaN());
@@ -88,6 +89,8 @@ CogWriter::CogWriter(const fs::path& destination, const GeoRasterGrid& grid, Geo
 
 CogWriter::~CogWriter() {
   if (dataset_) GDALClose(dataset_);
+  std::error_code ignored;
+  fs::remove(staging_, ignored);
 }
 
 void CogWriter::Fail(const std::string& what) const {
@@ -121,7 +124,7 @@ void CogWriter::WriteTile(int col, int row, const cv::Mat& tile) {
   if (result != CE_None) Fail("writing failed: " + LastGdalError());
 }
 
-void CogWriter::Finish(int num_threads) {
+void CogWriter::Convert(int num_threads) {
   CPLErrorReset();
   CPLPushErrorHandler(CPLQuietErrorHandler);
   GDALFlushCache(dataset_);
@@ -147,7 +150,10 @@ void CogWriter::Finish(int num_threads) {
   }
   GDALClose(dataset_);
   dataset_ = nullptr;
-  output_.Commit();
+  std::error_code ignored;
+  fs::remove(staging_, ignored);
 }
+
+void CogWriter::Commit() { output_.Commit(); }
 
 }  // namespace lutex

@@ -1,9 +1,10 @@
 #pragma once
 
 // A Cloud-Optimized GeoTIFF (COG) written tile by tile, through GDAL, in bounded memory: the tiles go
-// into a tiled staging GeoTIFF beside the output (ZSTD, hidden temporary name), which GDAL's COG driver
-// then copies into the output with overviews (tiled 512, DEFLATE, which every GIS reads). The output is
-// written under a temporary name and renamed when complete; the staging file is removed either way.
+// into a tiled staging GeoTIFF beside the output (ZSTD, named after the output's temporary, so the next
+// run removes it if this one is killed), which GDAL's COG driver then copies into the output with
+// overviews (tiled 512, DEFLATE, which every GIS reads). The output is written under a temporary name and
+// renamed by Commit(); the staging file is removed either way.
 // GDAL's block cache, shared by the process, is set to `cache_bytes`.
 //
 // Raster kinds:
@@ -46,9 +47,11 @@ class CogWriter {
 
   // `tile` (of the kind's type) at pixel (col, row) of the grid; it must lie inside the grid.
   void WriteTile(int col, int row, const cv::Mat& tile);
-  // Converts to the COG (with `num_threads` compressing) and renames it into place. Throws naming the
+  // Converts to the COG under its temporary name (with `num_threads` compressing). Throws naming the
   // destination, and saying so when the disk is full.
-  void Finish(int num_threads);
+  void Convert(int num_threads);
+  // Renames the converted COG into place (after Convert: several files converted, then all committed).
+  void Commit();
 
   const std::filesystem::path& destination() const { return output_.destination(); }
 
@@ -58,8 +61,8 @@ class CogWriter {
   GeoRasterGrid grid_;
   GeoRasterKind kind_;
   AtomicOutputFile output_;
-  AtomicOutputFile staging_;  // never committed: removed with the writer
-  void* dataset_ = nullptr;   // GDALDatasetH of the staging file
+  std::filesystem::path staging_;  // removed with the writer
+  void* dataset_ = nullptr;        // GDALDatasetH of the staging file
 };
 
 }  // namespace lutex

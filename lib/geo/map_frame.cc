@@ -34,6 +34,12 @@ namespace {
 bool IsProjected(PJ_CONTEXT* context, PJ* crs) {
   const PJ_TYPE type = proj_get_type(crs);
   if (type == PJ_TYPE_PROJECTED_CRS) return true;
+  if (type == PJ_TYPE_BOUND_CRS) {  // a CRS with its transformation to WGS 84 (+towgs84, WKT1 TOWGS84)
+    PJ* source = proj_get_source_crs(context, crs);
+    const bool projected = source && IsProjected(context, source);
+    if (source) proj_destroy(source);
+    return projected;
+  }
   if (type != PJ_TYPE_COMPOUND_CRS) return false;
   PJ* horizontal = proj_crs_get_sub_crs(context, crs, 0);
   const bool projected = horizontal && proj_get_type(horizontal) == PJ_TYPE_PROJECTED_CRS;

@@ -13,6 +13,7 @@
 #include <Eigen/SparseCore>
 #include <opencv2/imgproc.hpp>
 
+#include "lib/util/logging.h"
 #include "lib/util/median.h"
 
 namespace lutex {
@@ -181,7 +182,11 @@ SparseSurface SurfaceFromSparsePoints(const SparseModel& model, const Eigen::Vec
   for (const auto& corners : footprints) {
     std::vector<cv::Point> polygon;
     for (const auto& corner : corners) {
-      const Eigen::Vector2d node = grid.Node(corner.x(), corner.y()) * double(1 << kShift);
+      // Corners of rays near the horizon lie far away: kept within a cell of the grid (fixed point must
+      // not overflow), the polygon still covers the grid where the footprint does.
+      const Eigen::Vector2d near = corner.cwiseMax(grid_low - Eigen::Vector2d::Constant(resolution))
+                                       .cwiseMin(grid_high + Eigen::Vector2d::Constant(resolution));
+      const Eigen::Vector2d node = grid.Node(near.x(), near.y()) * double(1 << kShift);
       polygon.emplace_back(static_cast<int>(std::lround(node.x())), static_cast<int>(std::lround(node.y())));
     }
     cv::fillConvexPoly(footprint, polygon, cv::Scalar(255), cv::LINE_8, kShift);
@@ -323,6 +328,11 @@ SparseSurface SurfaceFromSparsePoints(const SparseModel& model, const Eigen::Vec
   solver.compute(normal);
   const Eigen::VectorXd heights = solver.solveWithGuess(rhs, Eigen::VectorXd::Constant(num_unknowns, median_height));
   if (!heights.allFinite()) throw std::runtime_error("the surface fit did not converge");
+  if (solver.info() != Eigen::Success) {
+    LogWarning() << "mesh: the height field's solve stopped after " << solver.iterations()
+                 << " iterations at relative error " << solver.error()
+                 << " (holes far from the points may be filled flatter than smooth)";
+  }
 
   // Residuals and the 2.5-D check.
   const auto height_at = [&](double px, double py) {

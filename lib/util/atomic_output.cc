@@ -45,14 +45,17 @@ void AtomicOutputFile::Commit() {
 }
 
 bool IsStaleTemporary(const std::filesystem::path& path) {
-  // ".STEM.tmpPID_N.EXT": the writer's process id follows the last ".tmp".
+  // ".STEM.tmpPID_N.EXT", possibly with what a library writing it adds after (GDAL's ".ovr.tmp"): the
+  // writer's process id follows the first ".tmp" that digits and "_" follow.
   const std::string name = path.filename().string();
   if (name.size() < 2 || name[0] != '.') return false;
-  const std::size_t tmp = name.rfind(".tmp");
-  if (tmp == std::string::npos || tmp == 0) return false;
-  std::size_t end = tmp + 4;
-  while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
-  if (end == tmp + 4 || end >= name.size() || name[end] != '_') return false;
+  std::size_t tmp = name.find(".tmp", 1), end = std::string::npos;
+  for (; tmp != std::string::npos; tmp = name.find(".tmp", tmp + 1)) {
+    end = tmp + 4;
+    while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
+    if (end > tmp + 4 && end < name.size() && name[end] == '_') break;
+  }
+  if (tmp == std::string::npos) return false;
   const long pid = std::stol(name.substr(tmp + 4, end - tmp - 4));
   // A live writer (this process, or another command writing beside us) keeps its temporaries.
   return pid > 0 && kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;

@@ -31,8 +31,9 @@ class AtomicOutputFile {
 };
 
 // Whether `path` is the temporary of a writer that was killed before it could commit or clean up
-// (".NAME.tmpPID_N.EXT" whose process PID no longer exists). A live writer's temporary, of this process
-// or of another command writing beside it, is not stale.
+// (".NAME.tmpPID_N.EXT", or that with a suffix a library adds, such as GDAL's ".ovr.tmp", whose process
+// PID no longer exists). A live writer's temporary, of this process or of another command writing beside
+// it, is not stale.
 bool IsStaleTemporary(const std::filesystem::path& path);
 
 // Removes the stale temporaries under `folder` (recursively); returns how many. A missing folder has none.

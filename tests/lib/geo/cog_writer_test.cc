@@ -58,8 +58,10 @@ TEST(CogWriter, TilesComeBackAsACloudOptimizedGeoTiffWithItsGridAndCrs) {
         heights.WriteTile(col, row, z);
       }
     }
-    colour.Finish(2);
-    heights.Finish(2);
+    colour.Convert(2);
+    heights.Convert(2);
+    colour.Commit();
+    heights.Commit();
   }
   EXPECT_EQ(FilesIn(dir.path()), 2u);  // no staging file, no temporary
 

@@ -86,6 +86,15 @@ TEST(AtomicOutput, StaleTemporariesOfKilledWritersAreRemovedLiveOnesKept) {
   EXPECT_EQ(RemoveStaleTemporariesOf(dir.path() / "lut.lut"), 1u);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / (".lut.tmp" + dead + "_0.lut")));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / (".other.tmp" + dead + "_0.lut")));
+
+  // What a library adds to a temporary's name (GDAL's overview and the COG writer's staging file) is the
+  // temporary's too.
+  const std::vector<std::string> suffixed = {".ortho.tmp" + dead + "_0.tif.ovr.tmp", ".ortho.tmp" + dead + "_0.tif.staging.tif"};
+  for (const std::string& name : suffixed) std::ofstream(dir.path() / name) << "part of a mosaic";
+  std::ofstream(dir.path() / (".ortho.tmp" + live + "_0.tif.ovr.tmp")) << "a live writer's";
+  EXPECT_EQ(RemoveStaleTemporariesOf(dir.path() / "ortho.tif"), 2u);
+  for (const std::string& name : suffixed) EXPECT_FALSE(std::filesystem::exists(dir.path() / name)) << name;
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / (".ortho.tmp" + live + "_0.tif.ovr.tmp")));
 }
 
 }  // namespace
