@@ -10,6 +10,8 @@
 #include "lib/geometry/mesh_io.h"
 #include "lib/lut/lut_file.h"
 #include "lib/lut/lut_slab_images.h"
+#include "lib/model/sparse_points.h"
+#include "lib/raycast/raycast_scene.h"
 #include "lib/model/synthetic_seafloor.h"
 #include "lib/util/logging.h"
 #include "lib/util/progress.h"
@@ -81,6 +83,14 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
     progress.Advance();
   }
   progress.Finish();
+  if (scene.sparse_points_per_image > 0) {
+    SparsePointsOptions points;
+    points.points_per_image = scene.sparse_points_per_image;
+    points.noise = scene.sparse_point_noise;
+    points.num_threads = options.num_threads;
+    const std::size_t added = AddSimulatedSparsePoints(RaycastScene(mesh), points, &model);
+    LogInfo() << "simulate: " << added << " sparse 3-D points with their tracks";
+  }
   WriteSparseModel(model, root / "sparse" / "0", scene.sparse_format);
   WriteMesh(mesh, root / "scene" / "mesh.ply");
   // The true LUT describes the images, so it includes the sensor's exposure (noise and blur average out).

@@ -158,7 +158,16 @@ void ParseSensor(const json& root, SceneDescription* scene) {
 void ParseOutput(const json& root, SceneDescription* scene) {
   if (root.contains("output")) {
     const json& output = root["output"];
-    ExpectKeys(output, "output", {"encoding", "sparse_format"});
+    ExpectKeys(output, "output", {"encoding", "sparse_format", "sparse_points", "sparse_point_noise"});
+    const double points = NumberField(output, "sparse_points", "output", 0.0);
+    if (!(points >= 0.0 && points <= 1e6) || points != std::floor(points)) {
+      throw JsonFieldError("output.sparse_points must be a whole number from 0 to 1000000");
+    }
+    scene->sparse_points_per_image = static_cast<int>(points);
+    scene->sparse_point_noise = NumberField(output, "sparse_point_noise", "output", 0.0);
+    if (!(scene->sparse_point_noise >= 0.0 && scene->sparse_point_noise < 1.0)) {
+      throw JsonFieldError("output.sparse_point_noise must be in [0, 1) metres");
+    }
     scene->output_encoding = ParseImageEncoding(TextField(output, "encoding", "output", "srgb8"));
     if (scene->output_encoding == ImageEncoding::kFloat) throw JsonFieldError("output.encoding must be srgb8 or linear16");
     const std::string format = TextField(output, "sparse_format", "output", "text");

@@ -17,7 +17,9 @@
 //                          "cycles_spot" (spot_size_deg, spot_blend)}],
 //   "water": "air" | {"absorption": [r, g, b], "scattering": [r, g, b], "g": 0.9},
 //   "sensor": {"exposure": 1, "blur_px": 0, "shot_noise": 0, "read_noise": 0, "seed": 1},
-//   "output": {"encoding": "srgb8" | "linear16", "sparse_format": "text" | "binary"},
+//   "output": {"encoding": "srgb8" | "linear16", "sparse_format": "text" | "binary",
+//              "sparse_points": 0, "sparse_point_noise": 0}  (3-D points per image, as SfM gives them:
+//              lib/model/sparse_points.h; their position noise in metres),
 //   "lut": {"nx": 40, "ny": 30, "nz": 10, "z_near": 0.5, "z_far": 5, "spacing": "inverse_z" | "z"},
 //   "simulator": {"backscatter_steps": 96, "max_range": 30, "shadows": true}
 // }
@@ -58,6 +60,8 @@ struct SceneDescription {
   SensorOptions sensor;
   ImageEncoding output_encoding = ImageEncoding::kSrgb8;
   SparseFormat sparse_format = SparseFormat::kText;
+  int sparse_points_per_image = 0;
+  double sparse_point_noise = 0.0;
   FrustumLutGrid lut_grid;
   SimulatorOptions simulator;
 };
