@@ -6,6 +6,8 @@
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/stages/output_policy.h"
 #include "lib/geometry/mesh_io.h"
+#include "lib/geometry/ply_io.h"
+#include "lib/util/file_streams.h"
 #include "lib/geometry/up_direction.h"
 #include "lib/util/option_error.h"
 
@@ -66,11 +68,23 @@ MeshSummary MeshWorkspace(const MeshOptions& options) {
     }
     summary.up_source = "the cameras";
   }
+  summary.points = workspace.sparse_dir;
+  for (const DenseWorkspace& dense : workspace.dense) {
+    if (!dense.fused_ply.empty()) {
+      summary.points = dense.fused_ply;
+      break;
+    }
+  }
   SparseSurface surface;
   try {
-    surface = SurfaceFromSparsePoints(model, summary.up, options.surface);
+    if (summary.points == workspace.sparse_dir) {
+      surface = SurfaceFromSparsePoints(model, summary.up, options.surface);
+    } else {
+      const Mesh cloud = ParseFile(summary.points, std::ios::binary, [](std::istream& stream) { return ReadPly(stream); });
+      surface = SurfaceFromPointCloud(cloud.vertices, model, summary.up, options.surface);
+    }
   } catch (const std::invalid_argument& error) {
-    throw std::runtime_error(workspace.sparse_dir.string() + ": " + error.what());
+    throw std::runtime_error(summary.points.string() + ": " + error.what());
   }
   summary.surface = surface.summary;
   WriteMesh(surface.mesh, summary.output);
@@ -81,8 +95,8 @@ MeshSummary MeshWorkspace(const MeshOptions& options) {
 void PrintMeshSummary(std::ostream& out, const MeshSummary& summary) {
   const SparseSurfaceSummary& s = summary.surface;
   out << std::fixed << std::setprecision(1) << "mesh: " << s.num_faces << " faces, " << s.num_vertices
-      << " vertices from " << s.kept_points << " of " << s.num_points << " sparse points in " << summary.seconds
-      << " s\n";
+      << " vertices from " << s.kept_points << " of " << s.num_points << " points of " << summary.points.string()
+      << " in " << summary.seconds << " s\n";
   out << "  dropped: " << s.short_tracks << " seen in too few images, " << s.large_errors
       << " with large reprojection errors, " << s.outside_footprint << " under no image, " << s.outliers
       << " off the local surface\n";

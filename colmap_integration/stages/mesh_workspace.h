@@ -4,7 +4,8 @@
 // regularised 2.5-D height field from the sparse points), for machines without the GPU COLMAP's dense
 // stereo needs. Up is the georeferenced frame's +z when there is a georeference (workspace_georeference.h),
 // else opposite the cameras' mean viewing direction (lib/geometry/up_direction.h), unless `up_axis` says.
-// Output: default W/lutex/mesh/mesh.ply, in the model's frame.
+// The points: a dense workspace's fused cloud (W/dense/N/fused.ply) when there is one, else the sparse
+// model's. Output: default W/lutex/mesh/mesh.ply, in the model's frame.
 
 #include <filesystem>
 #include <ostream>
@@ -32,6 +33,7 @@ struct MeshSummary {
   SparseSurfaceSummary surface;
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   std::string up_source;  // "given", "the georeferenced frame", "the cameras"
+  std::filesystem::path points;  // the fused cloud used, or the sparse model's folder
   double seconds = 0.0;
 };
 

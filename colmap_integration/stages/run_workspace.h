@@ -2,8 +2,9 @@
 
 // `lutex run`: the whole pipeline on one COLMAP workspace, everything under W/lutex/:
 //
-//   mesh        (only without a mesh)    mesh/          mesh.ply from the sparse model (lutex mesh), unless
-//                                                       a dense workspace has its own (W/dense/N/meshed-*.ply)
+//   mesh        (only without a mesh)    mesh/          mesh.ply (lutex mesh: from a fused cloud or the
+//                                                       sparse points), unless a dense workspace has its
+//                                                       own (W/dense/N/meshed-*.ply)
 //   raycast     (only with raycast_maps) raycast/       depth and normal maps in COLMAP's format
 //   calibrate   (unless a LUT is given)  calibration/   lut.lut, coverage.lut, calibration_summary.json, slabs/
 //   restore                              restored/, restored_confidence/

@@ -82,38 +82,14 @@ void SparseSurfaceOptions::Check() const {
   if (!(smoothness > 0.0) || !std::isfinite(smoothness)) throw std::invalid_argument("the smoothness must be positive");
 }
 
-SparseSurface SurfaceFromSparsePoints(const SparseModel& model, const Eigen::Vector3d& up_in_model,
-                                      const SparseSurfaceOptions& options) {
-  options.Check();
-  SparseSurface surface;
-  SparseSurfaceSummary& summary = surface.summary;
-  summary.num_points = model.points3D.size();
-  if (model.points3D.empty()) throw std::invalid_argument("the model has no 3-D points (points3D is empty)");
-  const Eigen::Quaterniond level_from_model = Eigen::Quaterniond::FromTwoVectors(up_in_model.normalized(), Eigen::Vector3d::UnitZ());
+namespace {
 
-  // 1. Points seen often and well; each image's heights, for its footprint.
-  std::vector<LevelPoint> points;
-  std::map<std::uint32_t, std::vector<double>> heights_of_image;
-  for (const auto& [id, point] : model.points3D) {
-    if (static_cast<int>(point.track.size()) < options.min_track_length) {
-      ++summary.short_tracks;
-      continue;
-    }
-    if (!(point.error <= options.max_reprojection_error)) {
-      ++summary.large_errors;
-      continue;
-    }
-    const Eigen::Vector3d xyz = level_from_model * point.xyz;
-    if (!xyz.allFinite()) continue;
-    points.push_back({xyz, true});
-    for (const TrackElement& element : point.track) heights_of_image[element.image_id].push_back(xyz.z());
-  }
-  if (points.size() < 10) {
-    throw std::invalid_argument("only " + std::to_string(points.size()) + " of the model's " +
-                                std::to_string(summary.num_points) + " 3-D points are seen in " +
-                                std::to_string(options.min_track_length) + " or more images with a reprojection error "
-                                "of at most " + std::to_string(options.max_reprojection_error) + " px: too few for a surface");
-  }
+// Steps 2 to 5 on points in the level frame; `heights_of_image`: the heights of the points each image
+// sees, for its footprint. `surface` comes with the counts of step 1.
+SparseSurface FitSurface(std::vector<LevelPoint> points, std::map<std::uint32_t, std::vector<double>> heights_of_image,
+                         const SparseModel& model, const Eigen::Quaterniond& level_from_model,
+                         const SparseSurfaceOptions& options, SparseSurface surface) {
+  SparseSurfaceSummary& summary = surface.summary;
   // The points must span an area, not a line.
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const auto& p : points) mean += p.xyz.head<2>();
@@ -410,6 +386,69 @@ SparseSurface SurfaceFromSparsePoints(const SparseModel& model, const Eigen::Vec
   summary.num_vertices = mesh.vertices.size();
   summary.num_faces = mesh.faces.size();
   return surface;
+}
+
+
+}  // namespace
+
+SparseSurface SurfaceFromSparsePoints(const SparseModel& model, const Eigen::Vector3d& up_in_model,
+                                      const SparseSurfaceOptions& options) {
+  options.Check();
+  SparseSurface surface;
+  SparseSurfaceSummary& summary = surface.summary;
+  summary.num_points = model.points3D.size();
+  if (model.points3D.empty()) throw std::invalid_argument("the model has no 3-D points (points3D is empty)");
+  const Eigen::Quaterniond level_from_model = Eigen::Quaterniond::FromTwoVectors(up_in_model.normalized(), Eigen::Vector3d::UnitZ());
+
+  // 1. Points seen often and well; each image's heights, for its footprint.
+  std::vector<LevelPoint> points;
+  std::map<std::uint32_t, std::vector<double>> heights_of_image;
+  for (const auto& [id, point] : model.points3D) {
+    if (static_cast<int>(point.track.size()) < options.min_track_length) {
+      ++summary.short_tracks;
+      continue;
+    }
+    if (!(point.error <= options.max_reprojection_error)) {
+      ++summary.large_errors;
+      continue;
+    }
+    const Eigen::Vector3d xyz = level_from_model * point.xyz;
+    if (!xyz.allFinite()) continue;
+    points.push_back({xyz, true});
+    for (const TrackElement& element : point.track) heights_of_image[element.image_id].push_back(xyz.z());
+  }
+  if (points.size() < 10) {
+    throw std::invalid_argument("only " + std::to_string(points.size()) + " of the model's " +
+                                std::to_string(summary.num_points) + " 3-D points are seen in " +
+                                std::to_string(options.min_track_length) + " or more images with a reprojection error "
+                                "of at most " + std::to_string(options.max_reprojection_error) + " px: too few for a surface");
+  }
+  return FitSurface(std::move(points), std::move(heights_of_image), model, level_from_model, options, std::move(surface));
+}
+
+SparseSurface SurfaceFromPointCloud(const std::vector<Eigen::Vector3d>& points_in_model, const SparseModel& model,
+                                    const Eigen::Vector3d& up_in_model, const SparseSurfaceOptions& options) {
+  options.Check();
+  SparseSurface surface;
+  surface.summary.num_points = points_in_model.size();
+  if (points_in_model.size() < 10) {
+    throw std::invalid_argument("the point cloud has " + std::to_string(points_in_model.size()) +
+                                " points: too few for a surface");
+  }
+  const Eigen::Quaterniond level_from_model = Eigen::Quaterniond::FromTwoVectors(up_in_model.normalized(), Eigen::Vector3d::UnitZ());
+  std::vector<LevelPoint> points;
+  std::vector<double> heights;
+  for (const Eigen::Vector3d& point : points_in_model) {
+    const Eigen::Vector3d xyz = level_from_model * point;
+    if (!xyz.allFinite()) continue;
+    points.push_back({xyz, true});
+    heights.push_back(xyz.z());
+  }
+  // A fused cloud keeps no tracks: every image's footprint is cut at the cloud's median height.
+  const double median = MedianInPlace(heights);
+  std::map<std::uint32_t, std::vector<double>> heights_of_image;
+  for (const auto& [id, image] : model.images) heights_of_image[id] = {median, median, median};
+  return FitSurface(std::move(points), std::move(heights_of_image), model, level_from_model, options, std::move(surface));
 }
 
 }  // namespace lutex

@@ -68,4 +68,9 @@ struct SparseSurface {
 SparseSurface SurfaceFromSparsePoints(const SparseModel& model, const Eigen::Vector3d& up_in_model,
                                       const SparseSurfaceOptions& options);
 
+// The same from a dense point cloud (COLMAP's fused.ply), which keeps no tracks: steps 2 to 5, every
+// image's footprint cut at the cloud's median height. `model` gives the images' footprints.
+SparseSurface SurfaceFromPointCloud(const std::vector<Eigen::Vector3d>& points_in_model, const SparseModel& model,
+                                    const Eigen::Vector3d& up_in_model, const SparseSurfaceOptions& options);
+
 }  // namespace lutex

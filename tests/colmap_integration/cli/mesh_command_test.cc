@@ -2,6 +2,7 @@
 // as one line naming the model, with nothing written.
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -67,6 +68,35 @@ TEST(MeshCommand, WritesTheSlopeOfTheSparsePointsIntoTheWorkspace) {
   EXPECT_NE(result.output.find("the survey is a terrain seen from above"), std::string::npos) << result.output;
   const Mesh mesh = ReadMesh(dir.path() / "lutex" / "mesh" / "mesh.ply");
   ASSERT_GT(mesh.faces.size(), 100u);
+  double worst = 0.0;
+  for (const Eigen::Vector3d& v : mesh.vertices) {
+    if (std::abs(v.x()) < 1.4 && std::abs(v.y()) < 1.1) worst = std::max(worst, std::abs(v.z() - 0.1 * v.x()));
+  }
+  EXPECT_LT(worst, 0.005);
+}
+
+TEST(MeshCommand, ADenseWorkspacesFusedCloudIsUsedWhenPresent) {
+  testing::TempDir dir;
+  MakeWorkspace(dir.path(), {});  // no sparse points at all
+  // W/dense/0 as image_undistorter and stereo_fusion leave it: images/, sparse/, fused.ply.
+  const fs::path dense = dir.path() / "dense" / "0";
+  fs::create_directories(dense / "images");
+  fs::copy(dir.path() / "sparse" / "0", dense / "sparse");
+  {
+    const std::vector<Eigen::Vector3d> cloud = Slope(40);
+    std::ofstream ply(dense / "fused.ply");
+    ply << "ply\nformat ascii 1.0\nelement vertex " << cloud.size()
+        << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+           "property float nz\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+    for (const Eigen::Vector3d& p : cloud) {
+      ply << p.x() << " " << p.y() << " " << p.z() + 0.002 * std::sin(50 * p.x()) << " 0 0 1 128 128 128\n";
+    }
+  }
+  const testing::CommandResult result =
+      testing::RunCommand(std::string(LUTEX_BINARY) + " mesh --workspace " + dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("points of " + (dense / "fused.ply").string()), std::string::npos) << result.output;
+  const Mesh mesh = ReadMesh(dir.path() / "lutex" / "mesh" / "mesh.ply");
   double worst = 0.0;
   for (const Eigen::Vector3d& v : mesh.vertices) {
     if (std::abs(v.x()) < 1.4 && std::abs(v.y()) < 1.1) worst = std::max(worst, std::abs(v.z() - 0.1 * v.x()));
