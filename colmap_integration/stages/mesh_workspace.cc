@@ -57,12 +57,8 @@ MeshSummary MeshWorkspace(const MeshOptions& options) {
     summary.up = Eigen::Vector3d::UnitZ();
     summary.up_source = "the georeferenced frame";
   } else {
-    std::vector<Eigen::Vector3d> directions_in_world;
-    for (const auto& [id, image] : model.images) {
-      directions_in_world.push_back(image.cam_from_world.rotation.inverse() * Eigen::Vector3d::UnitZ());
-    }
     try {
-      summary.up = UpFromViewingDirections(directions_in_world);
+      summary.up = UpFromCameras(model);
     } catch (const std::invalid_argument& error) {
       throw OptionError(std::string(error.what()) + "; give the model's up axis with {up_axis}");
     }

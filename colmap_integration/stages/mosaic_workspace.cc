@@ -52,12 +52,8 @@ double GsdOfViews(const RaycastScene& scene, const std::vector<TextureView>& vie
 }
 
 std::string WhyNotAMapWithoutGeoreference(const SparseModel& model) {
-  std::vector<Eigen::Vector3d> directions_in_world;
-  for (const auto& [id, image] : model.images) {
-    directions_in_world.push_back(image.cam_from_world.rotation.inverse() * Eigen::Vector3d::UnitZ());
-  }
   try {
-    const Eigen::Vector3d up = UpFromViewingDirections(directions_in_world);
+    const Eigen::Vector3d up = UpFromCameras(model);
     if (up == Eigen::Vector3d::UnitZ()) return "";
     return "the model is not georeferenced and its up (opposite the cameras' view) is " + DirectionName(up) +
            ", not +z";

@@ -31,15 +31,11 @@ void TextureOptions::Check() const {
 
 namespace {
 
-// The model's up: the option's axis, or from the views' optical axes.
-Eigen::Vector3d UpOf(const TextureOptions& options, const std::vector<TextureView>& views) {
+// The model's up: the option's axis, or from the cameras' optical axes.
+Eigen::Vector3d UpOf(const TextureOptions& options, const SparseModel& model) {
   if (options.up_axis != "auto") return *AxisFromName(options.up_axis);
-  std::vector<Eigen::Vector3d> directions_in_world;
-  for (const TextureView& view : views) {
-    directions_in_world.push_back(view.cam_from_world.rotation.inverse() * Eigen::Vector3d::UnitZ());
-  }
   try {
-    return UpFromViewingDirections(directions_in_world);
+    return UpFromCameras(model);
   } catch (const std::invalid_argument& error) {
     throw OptionError(std::string(error.what()) + "; give the model's up axis with {up_axis}");
   }
@@ -84,7 +80,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   summary.georeference = ResolveGeoreference(options.georeference, workspace);
   if (summary.georeference.georeference.IsSet()) MapFrame{summary.georeference.georeference};  // checks the CRS
   const bool up_from_frame = options.up_axis == "auto" && summary.georeference.georeference.IsSet();
-  summary.up = up_from_frame ? Eigen::Vector3d::UnitZ() : UpOf(options, views);
+  summary.up = up_from_frame ? Eigen::Vector3d::UnitZ() : UpOf(options, model);
   summary.up_from_cameras = options.up_axis == "auto" && !up_from_frame;
   TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, options.baking);
   summary.baking = result.summary;

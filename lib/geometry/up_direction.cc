@@ -24,6 +24,14 @@ Eigen::Vector3d UpFromViewingDirections(const std::vector<Eigen::Vector3d>& view
   return angle_degrees <= snap_degrees ? snapped : up;
 }
 
+Eigen::Vector3d UpFromCameras(const SparseModel& model, double snap_degrees) {
+  std::vector<Eigen::Vector3d> viewing_directions_in_world;
+  for (const auto& [id, image] : model.images) {
+    viewing_directions_in_world.push_back(image.cam_from_world.rotation.inverse() * Eigen::Vector3d::UnitZ());
+  }
+  return UpFromViewingDirections(viewing_directions_in_world, snap_degrees);
+}
+
 std::optional<Eigen::Vector3d> AxisFromName(const std::string& name) {
   const bool negative = !name.empty() && name[0] == '-';
   const std::string letter = negative || (!name.empty() && name[0] == '+') ? name.substr(1) : name;

@@ -13,6 +13,8 @@
 
 #include <Eigen/Core>
 
+#include "lib/geometry/sparse_model.h"
+
 namespace lutex {
 
 // `viewing_directions_in_world`: each camera's optical axis (+z of the camera) in the model's frame.
@@ -20,6 +22,9 @@ namespace lutex {
 // than half a unit: cameras looking every way, up cannot be told); the caller then asks for --up-axis.
 Eigen::Vector3d UpFromViewingDirections(const std::vector<Eigen::Vector3d>& viewing_directions_in_world,
                                         double snap_degrees = 10.0);
+
+// The same from the optical axes of every registered image of `model`.
+Eigen::Vector3d UpFromCameras(const SparseModel& model, double snap_degrees = 10.0);
 
 // "x", "-x", "y", "-y", "z", "-z" as a unit axis; nothing for another text.
 std::optional<Eigen::Vector3d> AxisFromName(const std::string& name);

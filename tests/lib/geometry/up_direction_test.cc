@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "lib/geometry/look_at.h"
+
 namespace lutex {
 namespace {
 
@@ -47,6 +49,20 @@ TEST(UpDirection, AxisNamesRoundTrip) {
   EXPECT_FALSE(AxisFromName("zz"));
   EXPECT_FALSE(AxisFromName(""));
   EXPECT_EQ(DirectionName(Eigen::Vector3d(0.6, 0.0, 0.8)), "(0.600, 0.000, 0.800)");
+}
+
+TEST(UpDirection, FromTheCamerasOfAModel) {
+  // Two images looking along -y of an unaligned model: up is +y.
+  SparseModel model;
+  for (std::uint32_t id = 1; id <= 2; ++id) {
+    Image image;
+    image.image_id = id;
+    image.cam_from_world = CamFromWorldLookingAt(Eigen::Vector3d(0.5 * id, 3, 0), -Eigen::Vector3d::UnitY(),
+                                                 Eigen::Vector3d::UnitZ());
+    model.images[id] = image;
+  }
+  EXPECT_EQ(UpFromCameras(model), Eigen::Vector3d::UnitY());
+  EXPECT_THROW(UpFromCameras(SparseModel()), std::invalid_argument);
 }
 
 }  // namespace
