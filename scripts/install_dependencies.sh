@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything lutex needs to build and test on Debian 12 (bookworm): C++ libraries and tools from
-# Debian's archive (Chromium renders lutex's HTML report and its GLB in tests), and from the npm registry the
+# Debian's archive (Chromium renders lutex's HTML report and its GLB in tests; clang builds the libFuzzer
+# targets of scripts/fuzz.sh), and from the npm registry the
 # Khronos glTF-Validator (which checks lutex's GLB output), pinned by scripts/gltf_validator/package-lock.json,
 # and three.js (which renders the GLB in Chromium), pinned by scripts/threejs_viewer/package-lock.json.
 # Idempotent: what is present is left as it is.
@@ -15,6 +16,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgdal-dev libproj-dev gdal-bin
   libgtest-dev libgmock-dev
+  clang libclang-rt-14-dev
   colmap
   python3-numpy python3-opencv python3-gdal
   chromium

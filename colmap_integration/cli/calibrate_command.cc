@@ -106,6 +106,7 @@ int RunCalibrateCommand(int argc, char** argv) {
   parser.AddPath("output", &options.output, "LUT file to write (default W/lutex/calibration/lut.lut).");
   AddImageEncodingOption(parser, "input-encoding", &options.input_encoding, "How W's images are encoded:");
   AddThreadsOption(parser, &options.num_threads);
+  AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   AddCalibrateStageOptions(parser, &options);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {

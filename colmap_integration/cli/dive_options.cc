@@ -1,6 +1,7 @@
 #include "colmap_integration/cli/dive_options.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -17,6 +18,28 @@ void AddThreadsOption(OptionParser& parser, int* num_threads) {
   parser.AddIntInRange("num-threads", num_threads, 0, most,
                        "Threads; 0 = all cores, at most " + std::to_string(most) +
                            " (4 per core). Results do not depend on it.");
+}
+
+std::size_t ParseMebibytes(const std::string& flag, const std::string& text) {
+  double mib = 0.0;
+  std::size_t used = 0;
+  try {
+    mib = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(mib >= 1.0) || !(mib < 1e12)) {
+    throw std::invalid_argument("--" + flag + " must be a number of MiB, at least 1, not '" + text + "'");
+  }
+  return static_cast<std::size_t>(mib * 1024.0 * 1024.0);
+}
+
+void AddMemoryLimitOption(OptionParser& parser, std::size_t* bytes) {
+  parser.AddCustom("memory-limit", "0",
+                   "MiB the command may use; it estimates what it needs from the cameras, the mesh and the\n"
+                   "      options before it starts and refuses, saying so, what would not fit. 0 (default) = the\n"
+                   "      machine's available memory.",
+                   [bytes](const std::string& text) { *bytes = text == "0" ? 0 : ParseMebibytes("memory-limit", text); });
 }
 
 }  // namespace lutex

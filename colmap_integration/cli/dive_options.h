@@ -2,7 +2,9 @@
 
 // The options every command over a dive registers the same way, stated once.
 
+#include <cstddef>
 #include <filesystem>
+#include <string>
 
 #include "colmap_integration/cli/option_parser.h"
 
@@ -13,5 +15,12 @@ void AddDiveOptions(OptionParser& parser, std::filesystem::path* workspace, std:
 
 // --num-threads N: 0 (all cores) or 1 to 4 per core; anything else is refused.
 void AddThreadsOption(OptionParser& parser, int* num_threads);
+
+// --memory-limit MiB: the stage refuses to start when its memory estimate exceeds it (default 0: the
+// machine's available memory).
+void AddMemoryLimitOption(OptionParser& parser, std::size_t* bytes);
+
+// Parses a positive number of MiB ("512", "1.5") for `flag`; throws std::invalid_argument otherwise.
+std::size_t ParseMebibytes(const std::string& flag, const std::string& text);
 
 }  // namespace lutex

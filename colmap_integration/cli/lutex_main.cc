@@ -1,8 +1,11 @@
 // The lutex command-line tool: one binary, COLMAP-style sub-commands. Only this function catches
-// exceptions: it prints one line on stderr and returns non-zero.
+// exceptions: it prints one line on stderr and returns non-zero. No standard library's own wording reaches
+// the user: running out of memory and a file system's refusal are put in lutex's words.
 
 #include <cstring>
 #include <exception>
+#include <filesystem>
+#include <new>
 #include <iostream>
 #include <string>
 
@@ -53,12 +56,19 @@ int main(int argc, char** argv) {
   }
   for (const Command& command : kCommands) {
     if (command.name != std::string(argv[1])) continue;
+    const std::string prefix = std::string("lutex ") + command.name + ": error: ";
     try {
       return command.run(argc, argv);
+    } catch (const std::bad_alloc&) {
+      std::cerr << prefix << "ran out of memory; use fewer --num-threads, a lower --memory-limit, or a machine "
+                             "with more memory\n";
+    } catch (const std::filesystem::filesystem_error& error) {
+      std::cerr << prefix << (error.path1().empty() ? std::string() : error.path1().string() + ": ")
+                << error.code().message() << "\n";
     } catch (const std::exception& error) {
-      std::cerr << "lutex " << command.name << ": error: " << error.what() << "\n";
-      return 1;
+      std::cerr << prefix << error.what() << "\n";
     }
+    return 1;
   }
   std::cerr << "lutex: unknown command '" << argv[1] << "' (lutex --help lists the commands)\n";
   return 1;

@@ -60,6 +60,7 @@ int RunMosaicCommand(int argc, char** argv) {
   AddMosaicStageOptions(parser, &options);
   AddViewFusionOptions(parser, &options.ortho.baking);
   AddThreadsOption(parser, &options.ortho.baking.num_threads);
+  AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] { PrintMosaicSummary(std::cout, MosaicWorkspace(options)); });
   return 0;

@@ -20,6 +20,7 @@ int RunRaycastCommand(int argc, char** argv) {
   AddDiveOptions(parser, &options.workspace, &options.mesh);
   parser.AddPath("output", &options.output, "Output folder (default W/lutex/raycast).");
   AddThreadsOption(parser, &options.num_threads);
+  AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   parser.AddFlag("previews", &options.write_previews, "Write 8-bit depth and normal previews (--no-previews to skip).");
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {

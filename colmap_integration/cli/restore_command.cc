@@ -27,6 +27,7 @@ int RunRestoreCommand(int argc, char** argv) {
   parser.AddPath("output", &options.output, "Output folder (default W/lutex/restored).");
   AddImageEncodingOption(parser, "input-encoding", &options.input_encoding, "How W's images are encoded:");
   AddThreadsOption(parser, &options.num_threads);
+  AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   AddRestoreStageOptions(parser, &options);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {

@@ -48,6 +48,7 @@ int RunRunCommand(int argc, char** argv) {
   parser.AddFlag("force", &options.force, "Run every stage, even those that are up to date.");
   parser.AddFlag("report", &options.report, "Write the HTML report at the end (--no-report to skip).");
   AddThreadsOption(parser, &options.num_threads);
+  AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   parser.SetGroup("mesh");
   AddMeshStageOptions(parser, &options.mesh_options);
   parser.SetGroup("calibrate");

@@ -33,6 +33,7 @@ int RunTextureCommand(int argc, char** argv) {
   AddImageEncodingOption(parser, "page-encoding", &options.page_encoding,
                          "OBJ/PLY pages (glTF pages are always srgb8):");
   AddThreadsOption(parser, &options.baking.num_threads);
+  AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   AddGeoreferenceOptions(parser, &options.georeference);
   AddTextureStageOptions(parser, &options);
   if (!parser.Parse(argc, argv, 2)) return 0;
@@ -54,17 +55,11 @@ void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
   AddViewFusionOptions(parser, &baking);
   parser.AddInt("max-page-size", &baking.charts.max_size, "Largest atlas page side in texels.");
   parser.AddInt("padding", &baking.charts.padding, "Texels around each chart.");
-  parser.AddCustom("memory-limit", std::to_string(baking.fusion.memory_limit_bytes >> 20),
+  parser.AddCustom("fusion-memory", std::to_string(baking.fusion.memory_limit_bytes >> 20),
                    "MiB for the per-texel sample buffers of one pass over the images; a larger atlas is done in\n"
                    "      several passes.",
                    [&baking](const std::string& text) {
-                     double mib = 0.0;
-                     try {
-                       mib = std::stod(text);
-                     } catch (const std::exception&) {
-                     }
-                     if (!(mib >= 1.0)) throw std::invalid_argument("--memory-limit must be at least 1 MiB, not '" + text + "'");
-                     baking.fusion.memory_limit_bytes = static_cast<std::size_t>(mib * 1024.0 * 1024.0);
+                     baking.fusion.memory_limit_bytes = ParseMebibytes("fusion-memory", text);
                    });
 }
 

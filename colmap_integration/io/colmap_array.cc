@@ -1,10 +1,13 @@
 #include "colmap_integration/io/colmap_array.h"
 
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "lib/util/binary_io.h"
 #include "lib/util/file_streams.h"
 
 namespace lutex {
@@ -37,6 +40,13 @@ cv::Mat ReadColmapArray(std::istream& stream) {
                              std::to_string(height) + "x" + std::to_string(channels));
   }
   const std::size_t plane = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  const std::size_t bytes = plane * static_cast<std::size_t>(channels) * sizeof(float);
+  if (const std::optional<std::uint64_t> left = BytesLeft(stream); left && *left < bytes) {
+    // Before allocating: a corrupt header must not reserve up to 16 TiB (4 x 2^20 x 2^20 floats).
+    throw std::runtime_error("truncated COLMAP array: the header promises " + std::to_string(width) + "x" +
+                             std::to_string(height) + "x" + std::to_string(channels) + " floats, the file has " +
+                             std::to_string(*left / 4));
+  }
   std::vector<float> planar(plane * static_cast<std::size_t>(channels));
   stream.read(reinterpret_cast<char*>(planar.data()), static_cast<std::streamsize>(planar.size() * sizeof(float)));
   if (stream.gcount() != static_cast<std::streamsize>(planar.size() * sizeof(float))) {

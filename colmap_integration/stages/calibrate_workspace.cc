@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/stage_memory.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/raycast/images_by_camera.h"
 #include "lib/model/light_rig_json.h"
 #include "colmap_integration/io/sparse_model_io.h"
@@ -33,6 +35,7 @@
 #include "lib/util/parallel_for.h"
 #include "lib/util/progress.h"
 #include "lib/util/option_error.h"
+#include "lib/util/json_fields.h"
 
 namespace lutex {
 
@@ -108,7 +111,7 @@ std::function<std::optional<BoardMaps>(const cv::Mat&, const CameraRays&)> Board
   try {
     json = nlohmann::json::parse(file);
   } catch (const nlohmann::json::exception& error) {
-    throw std::runtime_error(path.string() + ": not a board file (" + error.what() + ")");
+    throw std::runtime_error(path.string() + ": not a board file (" + JsonErrorText(error) + ")");
   }
   if (json.contains("charuco")) {
     const CharucoSpec spec = ReadCharucoSpec(path);
@@ -452,7 +455,9 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   given.Check();
   const InputsAndOutputs paths = PathsOf(given, dive.workspace());
   paths.Check();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
   paths.RemoveStaleTemporaries();
+  CheckStageMemory("calibrate", dive, given.num_threads, kImageStageBytesPerPixel, given.memory_limit_bytes);
   // The rig file, read once: its lights are the shading from here on.
   CalibrateOptions options = given;
   if (!options.shading_rig.empty()) options.calibration.grid.shading.rig = ReadLightRig(options.shading_rig);

@@ -75,6 +75,9 @@ struct CalibrateOptions {
   // targets: the mean albedo per channel of the surveyed surfaces, setting the scale), weights.
   CalibrationOptions calibration;
   int num_threads = 0;
+  // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
+  // available memory.
+  std::size_t memory_limit_bytes = 0;
 
   void Check() const;
 };

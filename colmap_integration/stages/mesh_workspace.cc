@@ -5,6 +5,7 @@
 
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/geometry/ply_io.h"
 #include "lib/util/file_streams.h"
@@ -47,6 +48,7 @@ MeshSummary MeshWorkspace(const MeshOptions& options) {
   paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
   paths.AddOutput(summary.output);
   paths.Check();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(workspace, paths);
   paths.RemoveStaleTemporaries();
   const SparseModel model = ReadSparseModel(workspace.sparse_dir);
   const WorkspaceGeoreference georeference = ResolveGeoreference(options.georeference, workspace);

@@ -9,6 +9,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/stage_memory.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/geo/cog_writer.h"
 #include "lib/geo/map_frame.h"
 #include "lib/geometry/up_direction.h"
@@ -106,7 +108,10 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   paths.Check();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
   paths.RemoveStaleTemporaries();
+  CheckStageMemory("mosaic", dive, options.ortho.baking.num_threads, kImageStageBytesPerPixel,
+                   options.memory_limit_bytes, FusionBudget(options.ortho.baking.fusion));
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   MosaicSummary summary;

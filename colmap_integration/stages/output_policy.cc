@@ -57,6 +57,14 @@ void InputsAndOutputs::AddWorkspace(const Workspace& workspace, const std::strin
   AddInput(workspace.sparse_dir, "the sparse model of " + what);
 }
 
+bool InputsAndOutputs::WritesInside(const fs::path& folder) const {
+  const fs::path resolved_folder = Resolved(folder);
+  for (const fs::path& output : outputs_) {
+    if (IsWithin(Resolved(output), resolved_folder)) return true;
+  }
+  return false;
+}
+
 void InputsAndOutputs::AddOutput(const fs::path& path) {
   if (!path.empty()) outputs_.push_back(path);
 }

@@ -32,6 +32,8 @@ class InputsAndOutputs {
   // Removes what killed writers left of the outputs (lib/util/atomic_output.h: in an output folder, every
   // stale temporary under it; beside an output file, that file's), saying so; a live writer's are kept.
   void RemoveStaleTemporaries() const;
+  // Whether an output is `folder` or lies inside it (paths resolved as for Check).
+  bool WritesInside(const std::filesystem::path& folder) const;
 
  private:
   struct Input {

@@ -9,6 +9,8 @@
 
 #include "colmap_integration/io/colmap_array.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/stage_memory.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/raycast/images_by_camera.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
@@ -51,7 +53,9 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options, const LoadedDive&
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   paths.Check();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
   paths.RemoveStaleTemporaries();
+  CheckStageMemory("raycast", dive, options.num_threads, kRaycastStageBytesPerPixel, options.memory_limit_bytes);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

@@ -26,6 +26,9 @@ struct RaycastOptions {
   std::filesystem::path output;
   // Threads over images; <= 0 uses all cores. Results do not depend on it.
   int num_threads = 0;
+  // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
+  // available memory.
+  std::size_t memory_limit_bytes = 0;
   // Also write 8-bit previews.
   bool write_previews = true;
   // Leave images alone whose outputs all exist (lutex run resumes so: every file is written under a

@@ -22,6 +22,7 @@
 #include "colmap_integration/stages/stage_record.h"
 #include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/image/image_io.h"
 #include "lib/lut/lut_file.h"
 #include "lib/lut/lut_slab_images.h"
@@ -359,6 +360,7 @@ ReportSummary WriteReport(const ReportOptions& options) {
   paths.AddInput(lut, "the LUT");
   paths.AddOutput(folder);
   paths.Check();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(workspace, paths);
   paths.RemoveStaleTemporaries();
   PictureEmbedder pictures;
   std::ostringstream html;

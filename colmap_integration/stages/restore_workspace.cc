@@ -9,6 +9,8 @@
 
 #include "colmap_integration/io/confidence_map_io.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/stage_memory.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/image/image_header.h"
 #include "lib/raycast/images_by_camera.h"
 #include "colmap_integration/io/sparse_model_io.h"
@@ -98,7 +100,9 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   paths.Check();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
   paths.RemoveStaleTemporaries();
+  CheckStageMemory("restore", dive, options.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

@@ -41,6 +41,9 @@ struct RestoreOptions {
   std::string output_encoding = "same";
   RestorationOptions restoration;
   int num_threads = 0;
+  // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
+  // available memory.
+  std::size_t memory_limit_bytes = 0;
   // Leave images alone whose restored image and confidence map both exist (lutex run resumes so; files
   // are written under temporary names and renamed, so an existing one is whole).
   bool skip_done = false;

@@ -13,7 +13,7 @@
 #include "colmap_integration/stages/report_workspace.h"
 #include "colmap_integration/stages/stage_record.h"
 #include "lib/util/atomic_output.h"
-#include "lib/util/file_lock.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/util/logging.h"
 #include "lib/util/option_error.h"
 
@@ -148,6 +148,7 @@ class DiveRun {
     raycast.mesh = mesh_;
     raycast.output = workspace_.RaycastDir();
     raycast.num_threads = options_.num_threads;
+    raycast.memory_limit_bytes = options_.memory_limit_bytes;
     StageRecord record = BaseRecord("raycast");
     record.AddOutput(raycast.output);
     summary_.stages.push_back(runner_.Run(record, {raycast.output}, [&](bool resume) {
@@ -166,6 +167,7 @@ class DiveRun {
       calibrate.output = summary_.lut;
       calibrate.input_encoding = options_.input_encoding;
       calibrate.num_threads = options_.num_threads;
+      calibrate.memory_limit_bytes = options_.memory_limit_bytes;
       StageRecord record = BaseRecord("calibrate");
       record.AddSetting("input-encoding", ImageEncodingName(options_.input_encoding));
       AddFolder(&record, workspace_.images_dir);
@@ -196,6 +198,7 @@ class DiveRun {
     restore.output = workspace_.RestoredDir();
     restore.input_encoding = options_.input_encoding;
     restore.num_threads = options_.num_threads;
+    restore.memory_limit_bytes = options_.memory_limit_bytes;
     summary_.restored = restore.output;
     summary_.confidence = ConfidenceDirOf(summary_.restored);
     StageRecord record = BaseRecord("restore");
@@ -221,6 +224,7 @@ class DiveRun {
     texture.georeference = options_.mosaic.georeference;
     texture.output = workspace_.ModelPath();
     texture.baking.num_threads = options_.num_threads;
+    texture.memory_limit_bytes = options_.memory_limit_bytes;
     summary_.model = texture.output;
     StageRecord record = BaseRecord("texture");
     record.AddSetting("image-encoding", ImageEncodingName(texture.views.image_encoding));
@@ -243,6 +247,7 @@ class DiveRun {
     mosaic.dem = workspace_.DemPath();
     mosaic.ortho.baking = options_.texture.baking;
     mosaic.ortho.baking.num_threads = options_.num_threads;
+    mosaic.memory_limit_bytes = options_.memory_limit_bytes;
     const WorkspaceGeoreference georeference = ResolveGeoreference(mosaic.georeference, workspace_);
     if (!georeference.georeference.IsSet()) {
       const std::string unfit = WhyNotAMapWithoutGeoreference(Dive().model());
@@ -359,7 +364,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
   }
   RunPaths(options, run.workspace()).Check();
   // One writer per workspace: a second run would take the first one's records for an interrupted run.
-  const ExclusiveFileLock lock(run.workspace().OutputDir() / ".lock", run.workspace().root.string());
+  const ExclusiveFileLock lock(WorkspaceLockPath(run.workspace()), run.workspace().root.string());
   run.Mesh();
   if (options.raycast_maps) run.Raycast();
   run.Calibrate();

@@ -21,6 +21,7 @@
 // removed), so a run killed at any point and started again ends with the same outputs as one that was
 // never interrupted.
 
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -61,6 +62,8 @@ struct RunOptions {
   // Write the HTML report at the end.
   bool report = true;
   int num_threads = 0;
+  // Every stage's memory limit (stage_memory.h); 0: the machine's available memory.
+  std::size_t memory_limit_bytes = 0;
 
   void Check() const;
 };

@@ -7,6 +7,8 @@
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/stage_memory.h"
+#include "colmap_integration/stages/workspace_lock.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/geo/map_frame.h"
 #include "lib/geometry/up_direction.h"
@@ -66,7 +68,10 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   paths.Check();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
   paths.RemoveStaleTemporaries();
+  CheckStageMemory("texture", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
+                   FusionBudget(options.baking.fusion));
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

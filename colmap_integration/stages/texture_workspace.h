@@ -29,6 +29,9 @@ struct TextureOptions {
   // Encoding of OBJ/PLY pages (glTF pages are always 8-bit sRGB).
   ImageEncoding page_encoding = ImageEncoding::kSrgb8;
   TextureBakingOptions baking;
+  // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
+  // available memory. The fusion's budget is held to half of it.
+  std::size_t memory_limit_bytes = 0;
   // The model's up axis for the GLB ("x", "-x", "y", "-y", "z", "-z"), or "auto": opposite the cameras'
   // mean viewing direction, snapped to an axis within 10 degrees (lib/geometry/up_direction.h).
   std::string up_axis = "auto";

@@ -1,5 +1,6 @@
 #include "lib/calibration/charuco_target.h"
 
+#include <climits>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -12,6 +13,7 @@
 
 #include "lib/calibration/albedo_json.h"
 #include "lib/image/image_io.h"
+#include "lib/util/json_fields.h"
 
 namespace lutex {
 
@@ -46,7 +48,7 @@ void CharucoSpec::Check() const {
   if (!(square_size > 0.0) || !(marker_size > 0.0) || !(marker_size < square_size)) {
     throw std::invalid_argument("a ChArUco board needs 0 < marker_size < square_size");
   }
-  const int markers = squares_x * squares_y / 2;
+  const long long markers = static_cast<long long>(squares_x) * squares_y / 2;  // a corrupt size must not overflow
   if (Dictionary(dictionary)->bytesList.rows < markers) {
     throw std::invalid_argument(dictionary + " has fewer markers than the board's " + std::to_string(markers));
   }
@@ -72,10 +74,10 @@ CharucoSpec ReadCharucoSpec(const std::filesystem::path& path) {
   try {
     const nlohmann::json json = nlohmann::json::parse(file);
     const nlohmann::json& board = json.at("charuco");
-    const auto squares = board.at("squares").get<std::vector<int>>();
-    if (squares.size() != 2) throw std::runtime_error("squares must be [across, down]");
-    spec.squares_x = squares[0];
-    spec.squares_y = squares[1];
+    const nlohmann::json& squares = board.at("squares");
+    if (!squares.is_array() || squares.size() != 2) throw std::runtime_error("squares must be [across, down]");
+    spec.squares_x = static_cast<int>(WholeNumber(squares[0], "squares", 0, INT_MAX));
+    spec.squares_y = static_cast<int>(WholeNumber(squares[1], "squares", 0, INT_MAX));
     spec.square_size = board.at("square_size").get<double>();
     spec.marker_size = board.at("marker_size").get<double>();
     spec.dictionary = board.value("dictionary", spec.dictionary);
@@ -92,7 +94,7 @@ CharucoSpec ReadCharucoSpec(const std::filesystem::path& path) {
     }
     spec.Check();
   } catch (const std::exception& error) {
-    throw std::runtime_error(path.string() + ": " + error.what());
+    throw std::runtime_error(path.string() + ": " + JsonErrorText(error));
   }
   return spec;
 }

@@ -1,5 +1,6 @@
 #include "lib/calibration/chessboard_target.h"
 
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -16,12 +17,16 @@
 
 #include "lib/calibration/albedo_json.h"
 #include "lib/image/image_io.h"
+#include "lib/util/json_fields.h"
 
 namespace lutex {
 
 void ChessboardSpec::Check() const {
   if (inner_corners_x < 3 || inner_corners_y < 3) {
     throw std::invalid_argument("a chessboard needs at least 3 x 3 inner corners");
+  }
+  if (inner_corners_x > 1000 || inner_corners_y > 1000) {  // a corrupt count, not a board OpenCV could find
+    throw std::invalid_argument("a chessboard of more than 1000 inner corners a side is implausible (a typo?)");
   }
   if (!(square_size > 0.0)) throw std::invalid_argument("the chessboard's square_size must be positive");
   for (const Eigen::Vector3d* albedo : {&black_albedo, &white_albedo}) {
@@ -40,16 +45,16 @@ ChessboardSpec ReadChessboardSpec(const std::filesystem::path& path) {
   try {
     const nlohmann::json json = nlohmann::json::parse(file);
     const nlohmann::json& board = json.at("chessboard");
-    const auto corners = board.at("inner_corners").get<std::vector<int>>();
-    if (corners.size() != 2) throw std::runtime_error("inner_corners must be [across, down]");
-    spec.inner_corners_x = corners[0];
-    spec.inner_corners_y = corners[1];
+    const nlohmann::json& corners = board.at("inner_corners");
+    if (!corners.is_array() || corners.size() != 2) throw std::runtime_error("inner_corners must be [across, down]");
+    spec.inner_corners_x = static_cast<int>(WholeNumber(corners[0], "inner_corners", 0, INT_MAX));
+    spec.inner_corners_y = static_cast<int>(WholeNumber(corners[1], "inner_corners", 0, INT_MAX));
     spec.square_size = board.at("square_size").get<double>();
     spec.black_albedo = ReadAlbedo(board, "black_albedo");
     spec.white_albedo = ReadAlbedo(board, "white_albedo");
     spec.Check();
   } catch (const std::exception& error) {
-    throw std::runtime_error(path.string() + ": " + error.what());
+    throw std::runtime_error(path.string() + ": " + JsonErrorText(error));
   }
   return spec;
 }

@@ -9,6 +9,7 @@
 
 #include "lib/calibration/albedo_json.h"
 #include "lib/util/logging.h"
+#include "lib/util/json_fields.h"
 
 namespace lutex {
 namespace {
@@ -49,7 +50,7 @@ std::vector<Target> ReadTargets(const std::filesystem::path& path) {
   try {
     root = nlohmann::json::parse(stream);
   } catch (const nlohmann::json::exception& error) {
-    throw std::runtime_error(path.string() + ": not valid JSON: " + error.what());
+    throw std::runtime_error(path.string() + ": " + JsonErrorText(error));
   }
   if (!root.contains("targets") || !root["targets"].is_array() || root["targets"].empty()) {
     throw std::runtime_error(path.string() + ": needs a non-empty \"targets\" array");
@@ -58,7 +59,12 @@ std::vector<Target> ReadTargets(const std::filesystem::path& path) {
   for (std::size_t t = 0; t < root["targets"].size(); ++t) {
     const nlohmann::json& entry = root["targets"][t];
     Target target;
-    target.name = entry.value("name", entry.contains("id") ? entry["id"].dump() : "target " + std::to_string(t));
+    // The name (a string), else the id as written, else the position: never an exception of the JSON library.
+    if (entry.contains("name") && entry["name"].is_string()) {
+      target.name = entry["name"].get<std::string>();
+    } else {
+      target.name = entry.contains("id") ? entry["id"].dump() : "target " + std::to_string(t);
+    }
     const std::string where = path.string() + ": target " + target.name;
     if (!entry.contains("corners_world")) {
       LogWarning() << where << " has no corners_world (not a planar target); skipped";
@@ -70,7 +76,7 @@ std::vector<Target> ReadTargets(const std::filesystem::path& path) {
         target.corners_world.emplace_back(corner.at(0).get<double>(), corner.at(1).get<double>(), corner.at(2).get<double>());
       }
     } catch (const nlohmann::json::exception& error) {
-      throw std::runtime_error(where + ": " + error.what());
+      throw std::runtime_error(where + ": " + JsonErrorText(error));
     } catch (const std::runtime_error& error) {
       throw std::runtime_error(where + ": " + error.what());
     }

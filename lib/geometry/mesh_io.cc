@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <fstream>
 #include <stdexcept>
 
@@ -172,8 +173,9 @@ void WriteMesh(const Mesh& mesh, const std::filesystem::path& path) {
     options += OpenMesh::IO::Options::Binary;
   }
   AtomicOutputFile output(path);
+  errno = 0;
   if (!OpenMesh::IO::write_mesh(target, output.temporary_path().string(), options, 17)) {
-    throw std::runtime_error(path.string() + ": could not write the mesh");
+    throw std::runtime_error(DescribeWriteFailure(path, errno, "the mesh writer failed"));
   }
   output.Commit();
 }

@@ -1,6 +1,7 @@
 #include "lib/geometry/ply_io.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -172,10 +173,19 @@ void ReadRecord(ValueReader& reader, const PlyElement& element, Record* record) 
       continue;
     }
     const double count = reader.Read(property.count_type, where.c_str());
-    if (count < 0 || count > 1024) throw std::runtime_error("PLY " + where + " has an implausible list length");
+    // Negated so that a NaN length (a float count type) fails too: it has no size_t.
+    if (!(count >= 0 && count <= 1024) || count != std::floor(count)) {
+      throw std::runtime_error("PLY " + where + " has an implausible list length");
+    }
     record->lists[p].resize(static_cast<std::size_t>(count));
     for (double& value : record->lists[p]) value = reader.Read(property.type, where.c_str());
   }
+}
+
+// A colour channel as a byte, clamped to [0, 255]. NaN (a float colour of a damaged file) has no byte.
+std::uint8_t ColourByte(double value, const char* element) {
+  if (std::isnan(value)) throw std::runtime_error(std::string("PLY ") + element + " colour is not a number");
+  return static_cast<std::uint8_t>(std::clamp(value, 0.0, 255.0));
 }
 
 int FindFirst(const PlyElement& element, std::initializer_list<const char*> names) {
@@ -214,7 +224,7 @@ Mesh ReadPly(std::istream& stream) {
           int c = 0;
           for (int channel : {red, green, blue}) {
             const double value = unit ? 255.0 * record.scalars[channel] + 0.5 : record.scalars[channel];
-            colour[c++] = static_cast<std::uint8_t>(std::clamp(value, 0.0, 255.0));
+            colour[c++] = ColourByte(value, "vertex");
           }
           mesh.vertex_colors.push_back(colour);
         }
@@ -250,9 +260,9 @@ Mesh ReadPly(std::istream& stream) {
           }
           mesh.faces.push_back(face);
           if (colours) {
-            mesh.face_colors.emplace_back(static_cast<std::uint8_t>(std::clamp(record.scalars[red], 0.0, 255.0)),
-                                          static_cast<std::uint8_t>(std::clamp(record.scalars[green], 0.0, 255.0)),
-                                          static_cast<std::uint8_t>(std::clamp(record.scalars[blue], 0.0, 255.0)));
+            mesh.face_colors.emplace_back(ColourByte(record.scalars[red], "face"),
+                                          ColourByte(record.scalars[green], "face"),
+                                          ColourByte(record.scalars[blue], "face"));
           }
           if (texcoord >= 0 && record.lists[texcoord].size() == 2 * corners.size()) {
             std::array<Eigen::Vector2f, 3> uv;
@@ -267,7 +277,7 @@ Mesh ReadPly(std::istream& stream) {
       if (!mesh.corner_texcoords.empty() && mesh.corner_texcoords.size() != mesh.faces.size()) {
         throw std::runtime_error("PLY face texcoord lists do not match their vertex lists");
       }
-    } else {
+    } else if (!element.properties.empty()) {  // records without properties hold no bytes, whatever their count
       for (std::size_t i = 0; i < element.count; ++i) ReadRecord(reader, element, &record);
     }
   }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <opencv2/imgcodecs.hpp>
+
 namespace lutex {
 namespace {
 
@@ -93,7 +95,14 @@ void ExpectCameraSize(const std::filesystem::path& path, int width, int height, 
 
 void CheckImageHeader(const std::filesystem::path& path, int width, int height, ImageEncoding encoding) {
   const std::optional<ImageHeader> header = ReadImageHeader(path);
-  if (!header) return;
+  if (!header) {
+    // Another format (TIFF, EXR, ...): its pixels are checked when decoded, but a file that no decoder
+    // recognises by its first bytes is refused now, before anything is written.
+    if (!cv::haveImageReader(path.string())) {
+      throw std::runtime_error(path.string() + ": not an image (its first bytes match no image format lutex reads)");
+    }
+    return;
+  }
   ExpectCameraSize(path, header->width, header->height, width, height);
   if (header->channels != 1 && header->channels != 3 && header->channels != 4) {
     throw std::runtime_error(path.string() + ": the image has " + std::to_string(header->channels) +

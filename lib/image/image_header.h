@@ -31,8 +31,9 @@ std::optional<ImageHeader> ReadImageHeader(const std::filesystem::path& path);
 void ExpectCameraSize(const std::filesystem::path& path, int width, int height, int camera_width, int camera_height);
 
 // Throws std::runtime_error naming the file unless what its header says suits a `width` x `height` camera
-// and `encoding` (8-bit samples for srgb8, 16-bit for linear16; PNG and JPEG hold no float). Files whose
-// header lutex does not read pass (they are checked when decoded).
+// and `encoding` (8-bit samples for srgb8, 16-bit for linear16; PNG and JPEG hold no float). Files of
+// another format pass when a decoder recognises their first bytes (their pixels are checked when decoded);
+// a file that no decoder recognises does not.
 void CheckImageHeader(const std::filesystem::path& path, int width, int height, ImageEncoding encoding);
 
 }  // namespace lutex

@@ -9,7 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "lib/util/atomic_output.h"
+#include "lib/util/file_streams.h"
 
 namespace lutex {
 namespace {
@@ -157,11 +157,21 @@ cv::Mat EncodeLinearImage(const cv::Mat& linear_rgb, ImageEncoding encoding) {
 
 void WriteEncodedImage(const cv::Mat& picture, const std::filesystem::path& path) {
   setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
-  AtomicOutputFile output(path);
-  if (!cv::imwrite(output.temporary_path().string(), picture)) {
-    throw std::runtime_error(path.string() + ": could not write the image (does the extension suit its bit depth?)");
+  // Encoded in memory, then written by lutex: a failure to write (a full disk) is named as such, and the
+  // codec libraries never see the file, so none of their own lines reach the user.
+  std::vector<uchar> bytes;
+  bool encoded = false;
+  try {
+    encoded = cv::imencode(path.extension().string(), picture, bytes);
+  } catch (const cv::Exception&) {
+    encoded = false;
   }
-  output.Commit();
+  if (!encoded) {
+    throw std::runtime_error(path.string() + ": cannot encode a " + std::to_string(picture.channels()) + "-channel " +
+                             (picture.depth() == CV_8U ? "8-bit" : picture.depth() == CV_16U ? "16-bit" : "float") +
+                             " image as " + path.extension().string());
+  }
+  WriteBytesAtomically(path, bytes.data(), bytes.size());
 }
 
 void WriteLinearImage(const cv::Mat& linear_rgb, const std::filesystem::path& path, ImageEncoding encoding) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace lutex {
@@ -25,6 +26,11 @@ void Split(double coordinate, int count, int* lower, double* fraction) {
 void FrustumLutGrid::Check() const {
   if (nx < 1 || ny < 1 || nz < 1) throw std::invalid_argument("LUT grid needs nx, ny, nz >= 1");
   if (nx > 4096 || ny > 4096 || nz > 4096) throw std::invalid_argument("LUT grid is implausibly large");
+  // NumNodes() and the file's value count (6 per node) are ints.
+  if (static_cast<long long>(nx + 1) * (ny + 1) * nz * 6 > std::numeric_limits<int>::max()) {
+    throw std::invalid_argument("LUT grid is implausibly large (" + std::to_string(nx) + " x " + std::to_string(ny) +
+                                " x " + std::to_string(nz) + " cells)");
+  }
   if (!(z_near > 0.0) || !(z_far >= z_near) || !std::isfinite(z_far)) {
     throw std::invalid_argument("LUT depth range needs 0 < z_near <= z_far (got " + std::to_string(z_near) + ", " +
                                 std::to_string(z_far) + ")");

@@ -1,6 +1,8 @@
 #include "lib/lut/lut_file.h"
 
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -9,6 +11,7 @@
 
 #include "lib/util/binary_io.h"
 #include "lib/util/file_streams.h"
+#include "lib/util/json_fields.h"
 
 namespace lutex {
 namespace {
@@ -60,13 +63,18 @@ FrustumLut ReadLut(std::istream& stream) {
   try {
     header = nlohmann::json::parse(line);
   } catch (const nlohmann::json::exception& error) {
-    throw std::runtime_error(std::string("LUT header is not valid JSON: ") + error.what());
+    throw std::runtime_error("the LUT header is " + JsonErrorText(error));
   }
   FrustumLutGrid grid;
+  long long num_values = -1;
   try {
-    grid.nx = header.at("nx").get<int>();
-    grid.ny = header.at("ny").get<int>();
-    grid.nz = header.at("nz").get<int>();
+    // Whole numbers in int's range (FrustumLutGrid::Check bounds them further), never cast from any number.
+    const auto whole = [&header](const char* key) {
+      return static_cast<int>(WholeNumber(header.at(key), std::string("the LUT header's ") + key, 0, INT_MAX));
+    };
+    grid.nx = whole("nx");
+    grid.ny = whole("ny");
+    grid.nz = whole("nz");
     grid.z_near = header.at("z_near").get<double>();
     grid.z_far = header.at("z_far").get<double>();
     const std::string spacing = header.at("depth_spacing").get<std::string>();
@@ -85,30 +93,39 @@ FrustumLut ReadLut(std::istream& stream) {
     } else {
       throw std::runtime_error("unknown alpha_interpolation '" + interpolation + "' (expected trilinear or inverse_square)");
     }
-    grid.image_width = header.at("image_width").get<int>();
+    grid.image_width = whole("image_width");
     if (header.contains("shading_light_in_cam")) {
       for (int c = 0; c < 3; ++c) grid.shading.light_in_cam[c] = header["shading_light_in_cam"].at(c).get<double>();
     }
     if (header.contains("shading_rig")) {
       for (const nlohmann::json& light : header["shading_rig"]) grid.shading.rig.lights.push_back(LightFromJson(light));
     }
-    grid.image_height = header.at("image_height").get<int>();
+    grid.image_height = whole("image_height");
     if (header.at("value_type").get<std::string>() != "float64 little-endian") {
       throw std::runtime_error("unsupported value_type");
     }
+    if (header.contains("num_values")) {
+      num_values = WholeNumber(header["num_values"], "the LUT header's num_values", 0, LLONG_MAX);
+    }
   } catch (const nlohmann::json::exception& error) {
-    throw std::runtime_error(std::string("LUT header lacks a field or has a wrong type: ") + error.what());
+    throw std::runtime_error("the LUT header lacks a field or has a wrong type: " + JsonErrorText(error));
   }
   try {
     grid.Check();
   } catch (const std::invalid_argument& error) {
     throw std::runtime_error(std::string("LUT header: ") + error.what());
   }
-  FrustumLut lut(grid);
   const long long expected = static_cast<long long>(grid.NumNodes()) * 6;
-  if (header.value("num_values", -1LL) != expected) {
+  if (num_values != expected) {
     throw std::runtime_error("LUT header's num_values does not match its grid (" + std::to_string(expected) + ")");
   }
+  // Before allocating the nodes: a header may promise up to 2^31 values that the file does not hold.
+  if (const std::optional<std::uint64_t> left = BytesLeft(stream);
+      left && *left < static_cast<std::uint64_t>(expected) * sizeof(double)) {
+    throw std::runtime_error("truncated file: the LUT header promises " + std::to_string(expected) +
+                             " values, the file holds " + std::to_string(*left / sizeof(double)));
+  }
+  FrustumLut lut(grid);
   for (int n = 0; n < grid.NumNodes(); ++n) {
     LutNode& node = lut.node(n);
     for (int c = 0; c < 3; ++c) node.alpha[c] = ReadBinary<double>(stream, "the LUT values");

@@ -26,10 +26,15 @@ std::vector<NamedPose> ParseSurvey(const json& object) {
   };
   const auto [x_min, x_max] = range("x", -3.5, 3.5);
   const auto [y_min, y_max] = range("y", -1.5, 1.5);
-  const int lines = static_cast<int>(NumberField(object, "lines", "survey", 3));
-  const int per_line = static_cast<int>(NumberField(object, "images_per_line", "survey", 8));
+  // At most kMaxSurveyImages images: a survey is simulated in memory, and a typo must not ask for billions.
+  constexpr long long kMaxSurveyImages = 100000;
+  const int lines = static_cast<int>(IntegerField(object, "lines", "survey", 3, 1, kMaxSurveyImages));
+  const int per_line = static_cast<int>(IntegerField(object, "images_per_line", "survey", 8, 1, kMaxSurveyImages));
   const double altitude = NumberField(object, "altitude", "survey", 2.0);
-  if (lines < 1 || per_line < 1 || !(altitude > 0)) throw JsonFieldError("survey needs lines, images_per_line >= 1 and altitude > 0");
+  if (!(altitude > 0)) throw JsonFieldError("survey needs altitude > 0");
+  if (static_cast<long long>(lines) * per_line > kMaxSurveyImages) {
+    throw JsonFieldError("survey.lines x survey.images_per_line must be at most " + std::to_string(kMaxSurveyImages));
+  }
   std::vector<NamedPose> poses;
   for (int line = 0; line < lines; ++line) {
     for (int step = 0; step < per_line; ++step) {
@@ -52,6 +57,7 @@ void ParseMesh(const json& root, const std::filesystem::path& folder, SceneDescr
     scene->mesh_path = folder / root["mesh"].get<std::string>();
   } else if (root.contains("mesh")) {
     ExpectKeys(root["mesh"], "mesh", {"synthetic"});
+    if (!root["mesh"].contains("synthetic")) throw JsonFieldError("mesh must be a file name or {\"synthetic\": {...}}");
     const json& synthetic = root["mesh"]["synthetic"];
     ExpectKeys(synthetic, "mesh.synthetic", {"size", "cell_size", "relief", "boulders", "patch_size", "seed"});
     if (synthetic.contains("size")) {
@@ -60,9 +66,11 @@ void ParseMesh(const json& root, const std::filesystem::path& folder, SceneDescr
     }
     scene->seafloor.cell_size = NumberField(synthetic, "cell_size", "mesh.synthetic", scene->seafloor.cell_size);
     scene->seafloor.relief = NumberField(synthetic, "relief", "mesh.synthetic", scene->seafloor.relief);
-    scene->seafloor.num_boulders = static_cast<int>(NumberField(synthetic, "boulders", "mesh.synthetic", scene->seafloor.num_boulders));
+    scene->seafloor.num_boulders = static_cast<int>(
+        IntegerField(synthetic, "boulders", "mesh.synthetic", scene->seafloor.num_boulders, 0, 1000000));
     scene->seafloor.patch_size = NumberField(synthetic, "patch_size", "mesh.synthetic", scene->seafloor.patch_size);
-    scene->seafloor.seed = static_cast<std::uint32_t>(NumberField(synthetic, "seed", "mesh.synthetic", scene->seafloor.seed));
+    scene->seafloor.seed = static_cast<std::uint32_t>(
+        IntegerField(synthetic, "seed", "mesh.synthetic", scene->seafloor.seed, 0, 4294967295LL));
   }
 }
 
@@ -99,8 +107,11 @@ void ParseCamera(const json& root, SceneDescription* scene) {
   ExpectKeys(camera, "camera", {"model", "width", "height", "params"});
   scene->camera.camera_id = 1;
   scene->camera.model_id = CameraModelIdFromName(TextField(camera, "model", "camera", "PINHOLE"));
-  scene->camera.width = static_cast<std::uint64_t>(NumberField(camera, "width", "camera", 0));
-  scene->camera.height = static_cast<std::uint64_t>(NumberField(camera, "height", "camera", 0));
+  const auto side = [&camera](const char* key) {  // Camera::Check words 0 and too large; this keeps the cast defined
+    return static_cast<std::uint64_t>(IntegerField(camera, key, "camera", 0, 0, 1LL << 53));
+  };
+  scene->camera.width = side("width");
+  scene->camera.height = side("height");
   if (!camera.contains("params") || !camera["params"].is_array()) throw JsonFieldError("camera.params must be an array");
   for (const json& value : camera["params"]) scene->camera.params.push_back(value.get<double>());
   scene->camera.Check("camera");
@@ -149,7 +160,7 @@ void ParseSensor(const json& root, SceneDescription* scene) {
     scene->sensor.blur_sigma_px = NumberField(sensor, "blur_px", "sensor", 0.0);
     scene->sensor.shot_noise = NumberField(sensor, "shot_noise", "sensor", 0.0);
     scene->sensor.read_noise = NumberField(sensor, "read_noise", "sensor", 0.0);
-    scene->sensor.seed = static_cast<std::uint64_t>(NumberField(sensor, "seed", "sensor", 1));
+    scene->sensor.seed = static_cast<std::uint64_t>(IntegerField(sensor, "seed", "sensor", 1, 0, 1LL << 53));
     scene->sensor.Check();
   }
 }
@@ -180,9 +191,9 @@ void ParseOutput(const json& root, SceneDescription* scene) {
 void ParseLutGrid(const json& root, SceneDescription* scene) {
   const json lut = root.contains("lut") ? root["lut"] : json::object();
   ExpectKeys(lut, "lut", {"nx", "ny", "nz", "z_near", "z_far", "spacing"});
-  scene->lut_grid.nx = static_cast<int>(NumberField(lut, "nx", "lut", 40));
-  scene->lut_grid.ny = static_cast<int>(NumberField(lut, "ny", "lut", 30));
-  scene->lut_grid.nz = static_cast<int>(NumberField(lut, "nz", "lut", 10));
+  scene->lut_grid.nx = static_cast<int>(IntegerField(lut, "nx", "lut", 40, 1, 4096));
+  scene->lut_grid.ny = static_cast<int>(IntegerField(lut, "ny", "lut", 30, 1, 4096));
+  scene->lut_grid.nz = static_cast<int>(IntegerField(lut, "nz", "lut", 10, 1, 4096));
   scene->lut_grid.z_near = NumberField(lut, "z_near", "lut", 0.5);
   scene->lut_grid.z_far = NumberField(lut, "z_far", "lut", 5.0);
   const std::string spacing = TextField(lut, "spacing", "lut", "inverse_z");
@@ -198,7 +209,8 @@ void ParseSimulator(const json& root, SceneDescription* scene) {
   if (root.contains("simulator")) {
     const json& simulator = root["simulator"];
     ExpectKeys(simulator, "simulator", {"backscatter_steps", "max_range", "shadows"});
-    scene->simulator.backscatter_steps = static_cast<int>(NumberField(simulator, "backscatter_steps", "simulator", 96));
+    scene->simulator.backscatter_steps =
+        static_cast<int>(IntegerField(simulator, "backscatter_steps", "simulator", 96, 1, 100000));
     scene->simulator.max_range = NumberField(simulator, "max_range", "simulator", 30.0);
     if (simulator.contains("shadows")) scene->simulator.shadows = simulator["shadows"].get<bool>();
     scene->simulator.Check();

@@ -26,7 +26,8 @@ void ForEachImageWithMaps(
   // The maps of the image each worker is on, reused from image to image.
   std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(num_threads)));
   ProgressReporter progress(progress_label, model.images.size(), "images");
-  for (const auto& [key, images] : images_by_camera) {
+  for (const auto& key_and_images : images_by_camera) {
+    const auto& images = key_and_images.second;  // a lambda cannot capture a structured binding before C++20
     const CameraRays rays(model.cameras.at(images.front()->camera_id), num_threads);
     ParallelForOnWorkers(images.size(), num_threads, [&](std::size_t i, int worker) {
       GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];

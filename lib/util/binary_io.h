@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <istream>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,23 @@ T ReadBinary(std::istream& stream, const char* what) {
     throw std::runtime_error(std::string("truncated file: it ends inside ") + what);
   }
   return value;
+}
+
+// The bytes from the stream's position to its end, or nothing when the stream cannot seek (a pipe). Readers
+// check a count read from a file against it before allocating, so a corrupt count fails as a truncated
+// file instead of reserving gigabytes.
+inline std::optional<std::uint64_t> BytesLeft(std::istream& stream) {
+  const std::istream::pos_type here = stream.tellg();
+  if (here == std::istream::pos_type(-1)) return std::nullopt;
+  stream.seekg(0, std::ios::end);
+  const std::istream::pos_type end = stream.tellg();
+  stream.seekg(here);
+  if (end == std::istream::pos_type(-1) || !stream || end < here) {
+    stream.clear();
+    stream.seekg(here);
+    return std::nullopt;
+  }
+  return static_cast<std::uint64_t>(end - here);
 }
 
 template <typename T>

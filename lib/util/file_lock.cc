@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <cstring>
 #include <ctime>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 
 #include "lib/util/logging.h"
@@ -34,9 +36,38 @@ std::string HolderText() {
   return "pid " + std::to_string(::getpid()) + " on " + host + " (started " + started + ")\n";
 }
 
+// The locks this process holds, by absolute path, with how many holders share each. A child made by fork()
+// inherits the map but not the holds: an entry counts only for the process that made it.
+struct Hold {
+  pid_t holder = 0;
+  int count = 0;
+};
+std::mutex held_mutex;
+std::map<std::filesystem::path, Hold>& HeldLocks() {
+  static std::map<std::filesystem::path, Hold> held;
+  return held;
+}
+
 }  // namespace
 
-ExclusiveFileLock::ExclusiveFileLock(const std::filesystem::path& path, const std::string& what) : path_(path) {
+ExclusiveFileLock::ExclusiveFileLock(const std::filesystem::path& path, const std::string& what)
+    : path_(std::filesystem::absolute(path).lexically_normal()) {
+  {
+    const std::lock_guard<std::mutex> guard(held_mutex);
+    const auto held = HeldLocks().find(path_);
+    if (held != HeldLocks().end() && held->second.holder == ::getpid()) {  // lutex run, then one of its stages
+      ++held->second.count;
+      nested_ = true;
+      return;
+    }
+  }
+  Acquire(what);
+  const std::lock_guard<std::mutex> guard(held_mutex);
+  HeldLocks()[path_] = Hold{::getpid(), 1};
+}
+
+void ExclusiveFileLock::Acquire(const std::string& what) {
+  const std::filesystem::path& path = path_;
   created_folder_ = std::filesystem::create_directories(path.parent_path());
   // A holder removes the file as it releases the lock; a file opened just before that is no longer the
   // lock file once we hold it, so try again on the file now at `path`.
@@ -72,7 +103,14 @@ ExclusiveFileLock::ExclusiveFileLock(const std::filesystem::path& path, const st
 }
 
 ExclusiveFileLock::~ExclusiveFileLock() {
-  if (fd_ < 0) return;
+  {
+    const std::lock_guard<std::mutex> guard(held_mutex);
+    const auto held = HeldLocks().find(path_);
+    if (held != HeldLocks().end() && held->second.holder == ::getpid() && --held->second.count == 0) {
+      HeldLocks().erase(held);
+    }
+  }
+  if (nested_ || fd_ < 0) return;
   std::error_code ignored;
   std::filesystem::remove(path_, ignored);  // while still holding the lock, so nobody locks a removed file
   ::close(fd_);

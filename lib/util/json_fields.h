@@ -27,10 +27,22 @@ void ExpectKeys(const nlohmann::json& object, const std::string& where, std::ini
 // object[key] as a number, string or 3-vector; `fallback` when the key is absent, JsonFieldError when it has
 // another type.
 double NumberField(const nlohmann::json& object, const std::string& key, const std::string& where, double fallback);
+// `value` as a whole number in [min, max], else JsonFieldError "`what` must be a whole number from min to max".
+// Use it instead of the JSON library's get<int>(), which casts any number (1e30 too: undefined behaviour).
+long long WholeNumber(const nlohmann::json& value, const std::string& what, long long min, long long max);
+// object[key] as a whole number in [min, max]; `fallback` when the key is absent, JsonFieldError when it is
+// not a number, not whole or out of range (a count or size read as double must not be cast blindly).
+long long IntegerField(const nlohmann::json& object, const std::string& key, const std::string& where,
+                       long long fallback, long long min, long long max);
 std::string TextField(const nlohmann::json& object, const std::string& key, const std::string& where,
                       const std::string& fallback);
 Eigen::Vector3d Vector3Field(const nlohmann::json& object, const std::string& key, const std::string& where,
                              const Eigen::Vector3d& fallback);
+
+// The text of an error from parsing or reading JSON, in lutex's words: a syntax error becomes "not valid
+// JSON (line 3, column 15)", the library's type and key errors lose its "[json.exception...]" tag. Other
+// errors keep their text.
+std::string JsonErrorText(const std::exception& error);
 
 // `parse(root, folder of the file)` of the JSON in `path`; every error (missing file, syntax, types, the
 // parser's own) is rethrown as std::runtime_error starting with the path. `what` names the kind of file
@@ -43,7 +55,7 @@ auto ReadJsonFile(const std::filesystem::path& path, const char* what, Parse par
   try {
     return parse(nlohmann::json::parse(stream), path.parent_path());
   } catch (const std::exception& error) {  // JSON syntax and type errors, and the parser's own
-    throw std::runtime_error(path.string() + ": " + error.what());
+    throw std::runtime_error(path.string() + ": " + JsonErrorText(error));
   }
 }
 

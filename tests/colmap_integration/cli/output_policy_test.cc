@@ -18,6 +18,7 @@
 #include "lib/geometry/mesh_primitives.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/tree_snapshot.h"
 
 namespace lutex {
 namespace {
@@ -46,18 +47,6 @@ void MakeWorkspace(const fs::path& root) {
   std::ofstream(root / "targets.json") << "{\"targets\": []}";
   std::ofstream(root / "calibration.lut") << "a LUT";
   fs::create_symlink(root / "images", root / "link_to_images");
-}
-
-// Every file under `root` with its contents.
-std::map<fs::path, std::string> Snapshot(const fs::path& root) {
-  std::map<fs::path, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    if (!entry.is_regular_file() || entry.is_symlink()) continue;
-    std::ostringstream bytes;
-    bytes << std::ifstream(entry.path(), std::ios::binary).rdbuf();
-    files[entry.path()] = bytes.str();
-  }
-  return files;
 }
 
 struct Case {
@@ -112,7 +101,7 @@ TEST(OutputPolicy, EveryCommandRefusesAnOutputOverOrInsideItsInputsAndChangesNot
   testing::TempDir dir;
   const fs::path workspace = dir.path() / "W";
   MakeWorkspace(workspace);
-  const std::map<fs::path, std::string> before = Snapshot(dir.path());
+  const std::map<fs::path, std::string> before = testing::TreeSnapshot(dir.path());
   for (const Case& c : cases) {
     const testing::CommandResult result =
         testing::RunCommand(std::string(LUTEX_BINARY) + " " + WithWorkspace(c.command, workspace));
@@ -122,7 +111,7 @@ TEST(OutputPolicy, EveryCommandRefusesAnOutputOverOrInsideItsInputsAndChangesNot
     EXPECT_NE(result.output.find("(" + WithWorkspace(c.input, workspace) + ")"), std::string::npos)
         << c.name << ": " << result.output;
     EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << c.name << ": " << result.output;
-    EXPECT_EQ(Snapshot(dir.path()), before) << c.name << ": a file was written or changed";
+    EXPECT_EQ(testing::TreeSnapshot(dir.path()), before) << c.name << ": a file was written or changed";
     EXPECT_FALSE(fs::exists(workspace / "lutex")) << c.name;
   }
 }
@@ -134,7 +123,7 @@ TEST(OutputPolicy, RunRefusesAMeshItWouldOverwriteBeforeAnyStageStarts) {
   // A mesh kept where lutex run writes its textured model.
   fs::create_directories(workspace / "lutex");
   fs::copy_file(workspace / "scene" / "mesh.ply", workspace / "lutex" / "model.glb");
-  const std::map<fs::path, std::string> before = Snapshot(dir.path());
+  const std::map<fs::path, std::string> before = testing::TreeSnapshot(dir.path());
   const testing::CommandResult result = testing::RunCommand(
       std::string(LUTEX_BINARY) + " run --workspace " + workspace.string() + " --mesh " +
       (workspace / "lutex" / "model.glb").string() + " --lut " + (workspace / "calibration.lut").string());
@@ -142,7 +131,7 @@ TEST(OutputPolicy, RunRefusesAMeshItWouldOverwriteBeforeAnyStageStarts) {
   EXPECT_NE(result.output.find((workspace / "lutex" / "model.glb").string() + ": the output is the mesh"),
             std::string::npos)
       << result.output;
-  EXPECT_EQ(Snapshot(dir.path()), before);
+  EXPECT_EQ(testing::TreeSnapshot(dir.path()), before);
   EXPECT_FALSE(fs::exists(workspace / "lutex" / "run"));
 }
 
@@ -166,7 +155,7 @@ TEST(OutputPolicy, AnOutputThroughAFileIsRefusedNamingTheFile) {
   const fs::path workspace = dir.path() / "W";
   MakeWorkspace(workspace);
   std::ofstream(dir.path() / "afile") << "not a folder";
-  const std::map<fs::path, std::string> before = Snapshot(dir.path());
+  const std::map<fs::path, std::string> before = testing::TreeSnapshot(dir.path());
   for (const std::string output : {"afile/x", "afile/x/y.lut"}) {
     const testing::CommandResult result = testing::RunCommand(
         std::string(LUTEX_BINARY) + " raycast --workspace " + workspace.string() + " --mesh " +
@@ -178,7 +167,7 @@ TEST(OutputPolicy, AnOutputThroughAFileIsRefusedNamingTheFile) {
         << result.output;
     EXPECT_EQ(result.output.find("filesystem error"), std::string::npos) << result.output;
   }
-  EXPECT_EQ(Snapshot(dir.path()), before);
+  EXPECT_EQ(testing::TreeSnapshot(dir.path()), before);
 }
 
 // A killed command leaves temporaries (".NAME.tmpPID_N.EXT"); the next command writing there removes them,

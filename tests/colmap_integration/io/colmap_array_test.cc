@@ -48,6 +48,19 @@ TEST(ColmapArray, TruncatedAndGarbageFilesAreErrors) {
   EXPECT_THROW(ReadColmapArray(garbage), std::runtime_error);
 }
 
+// Found reviewing the reader for fuzz/colmap_array_fuzzer: the header's size is checked against the file before
+// the values are allocated, so a corrupt header cannot reserve up to 16 TiB.
+TEST(ColmapArray, AHeaderPromisingMoreThanTheFileHoldsIsAnErrorBeforeAllocating) {
+  std::istringstream huge(std::string("1048576&1048576&4&") + std::string(8, '\0'));
+  try {
+    ReadColmapArray(huge);
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("promises 1048576x1048576x4 floats, the file has 2"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(ColmapArray, NanBecomesColmapsZero) {
   cv::Mat depth(1, 2, CV_32F);
   depth.at<float>(0, 0) = std::nanf("");

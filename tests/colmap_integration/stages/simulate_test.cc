@@ -118,6 +118,24 @@ TEST(Simulate, BadDescriptionsNameTheProblem) {
                 .find("at least one light"), std::string::npos);
 }
 
+// Found reviewing the reader for fuzz/scene_fuzzer: counts and sizes read as numbers were cast to int unchecked
+// (undefined behaviour for 1e30), a survey of 2^31 x 2^31 images was generated, "mesh": {} read a key it lacks.
+TEST(Simulate, CountsOutOfRangeAndAnEmptyMeshAreClearErrors) {
+  const std::string camera = R"("camera": {"model": "PINHOLE", "width": 10, "height": 10, "params": [5, 5, 5, 5]}, )";
+  const std::string lights = R"("lights": [{}])";
+  EXPECT_NE(DescriptionError("{" + camera + lights + R"(, "lut": {"nx": 1e30}})")
+                .find("lut.nx must be a whole number from 1 to 4096"), std::string::npos);
+  EXPECT_NE(DescriptionError(R"({"camera": {"model": "PINHOLE", "width": -1, "height": 10, "params": [5, 5, 5, 5]}, )" +
+                             lights + "}")
+                .find("camera.width must be a whole number"), std::string::npos);
+  EXPECT_NE(DescriptionError("{" + camera + lights + R"(, "survey": {"lines": 100000, "images_per_line": 100000}})")
+                .find("survey.lines x survey.images_per_line must be at most 100000"), std::string::npos);
+  EXPECT_NE(DescriptionError("{" + camera + lights + R"(, "sensor": {"seed": 2.5}})")
+                .find("sensor.seed must be a whole number"), std::string::npos);
+  EXPECT_NE(DescriptionError("{" + camera + lights + R"(, "mesh": {}})").find("mesh must be a file name"),
+            std::string::npos);
+}
+
 TEST(Simulate, CommandLineFailsCleanlyOnAMissingScene) {
   testing::TempDir dir;
   const testing::CommandResult result = testing::RunCommand(std::string(LUTEX_BINARY) + " simulate --scene " +

@@ -45,6 +45,22 @@ TEST(CharucoTarget, ReadsTheFileAndRejectsNonsense) {
   }
 }
 
+// Found reviewing the reader for fuzz/board_fuzzer: 65536 x 65536 squares overflowed the marker count (undefined
+// behaviour).
+TEST(CharucoTarget, AHugeBoardIsAnErrorWithoutOverflow) {
+  testing::TempDir dir;
+  const auto path = dir.path() / "board.json";
+  std::ofstream(path) << R"({"charuco": {"squares": [65536, 65536], "square_size": 0.12, "marker_size": 0.09,
+    "black_albedo_srgb8": [25, 25, 25]}})";
+  try {
+    ReadCharucoSpec(path);
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("fewer markers than the board's 2147483648"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(CharucoTarget, FindsTheBoardAndCalibratesTheLutFromItsPatches) {
   testing::TempDir dir;
   const CharucoSpec spec = testing::PatchedCharucoSpec(0.12);

@@ -71,5 +71,16 @@ TEST(Targets, BadEntriesAreErrorsNamingTheFileTheTargetAndTheProblem) {
   }
 }
 
+// Found reviewing the reader for fuzz/targets_fuzzer: a name that is not a string escaped as the JSON library's
+// own exception (a std::exception, not the std::runtime_error the reader promises).
+TEST(Targets, OddEntriesAreClearErrorsNotTheJsonLibrarys) {
+  testing::TempDir dir;
+  const auto path = dir.path() / "targets.json";
+  const std::string file = path.string();
+  EXPECT_EQ(ReadError(path, R"({"targets": [{"name": 7, "albedo_linear": [0.2, 0.5], "corners_world": []}]})"),
+            file + ": target target 0: albedo_linear must have 3 values");
+  EXPECT_EQ(ReadError(path, R"({"targets": [3, "x"]})"), file + ": no planar target (with corners_world)");
+}
+
 }  // namespace
 }  // namespace lutex

@@ -137,6 +137,24 @@ TEST(MeshIo, OutOfRangeFaceIndexIsAnError) {
   ExpectReadError(dir.path() / "range.ply", "");
 }
 
+// A NaN list length (found by fuzz/ply_fuzzer) or float colour (found reviewing the reader) was cast to an
+// integer, undefined behaviour; an element without properties was "read" once per record, up to 2^63 times.
+TEST(MeshIo, NanLengthOrColourIsAnErrorAndAnEmptyElementIsReadAtOnce) {
+  testing::TempDir dir;
+  WriteText(dir.path() / "nan_length.ply", AsciiPly("vertex_indices", "", "nan 0 1 2\n3 0 2 3\n"));
+  ExpectReadError(dir.path() / "nan_length.ply", "PLY face vertex_indices has an implausible list length");
+  WriteText(dir.path() / "nan.ply",
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+            "property float red\nproperty float green\nproperty float blue\nelement face 1\n"
+            "property list uchar int vertex_indices\nend_header\n0 0 0 nan 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n");
+  ExpectReadError(dir.path() / "nan.ply", "PLY vertex colour is not a number");
+  WriteText(dir.path() / "empty_element.ply",
+            "ply\nformat ascii 1.0\nelement nothing 9000000000000000000\nelement vertex 3\nproperty float x\n"
+            "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(ReadMesh(dir.path() / "empty_element.ply").faces.size(), 1u);
+}
+
 TEST(MeshIo, DegenerateFacesAreDropped) {
   Mesh mesh = MakeHeightFieldMesh([](double, double) { return 0.0; }, 0, 1, 0, 1, 1, 1);
   mesh.faces.push_back({0, 0, 1});                   // repeated vertex

@@ -50,9 +50,19 @@ TEST(ImageHeader, PngAndJpegTellTheirSizeChannelsAndDepth) {
 
 TEST(ImageHeader, OtherFilesAreLeftToTheDecoderAndTruncatedHeadersAreErrors) {
   testing::TempDir dir;
-  std::ofstream(dir.path() / "notes.tif") << "II*\0 not really";
+  // A TIFF signature ("II*\0"): a decoder recognises it, so its pixels are left to decoding.
+  std::ofstream(dir.path() / "notes.tif").write("II*\0 not really", 15);
   EXPECT_FALSE(ReadImageHeader(dir.path() / "notes.tif"));
   EXPECT_NO_THROW(CheckImageHeader(dir.path() / "notes.tif", 1, 1, ImageEncoding::kSrgb8));
+  // No decoder recognises these first bytes: refused before anything is decoded or written.
+  std::ofstream(dir.path() / "notes.png") << "GIF89a, or not";
+  try {
+    CheckImageHeader(dir.path() / "notes.png", 1, 1, ImageEncoding::kSrgb8);
+    FAIL();
+  } catch (const std::runtime_error& error) {
+    EXPECT_EQ(std::string(error.what()), (dir.path() / "notes.png").string() +
+                                             ": not an image (its first bytes match no image format lutex reads)");
+  }
   cv::imwrite((dir.path() / "a.png").string(), cv::Mat(30, 40, CV_16UC3, cv::Scalar::all(7)));
   fs::resize_file(dir.path() / "a.png", 20);
   try {

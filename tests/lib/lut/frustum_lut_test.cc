@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "lib/lut/lut_file.h"
 #include "lib/lut/lut_slab_images.h"
@@ -235,6 +236,38 @@ TEST(LutFile, BadFilesAreClearErrors) {
     std::memcpy(&negative[negative.size() - from_end], &value, 8);
     EXPECT_NE(ReadError(negative).find("negative alpha or beta: the file is corrupt"), std::string::npos) << from_end;
   }
+}
+
+// Found reviewing the reader for fuzz/lut_fuzzer: a header's grid is checked against the int node count and the
+// file's size before the nodes are allocated, so a corrupt header can neither overflow nor reserve gigabytes.
+TEST(LutFile, AHeaderPromisingMoreThanTheFileHoldsIsAnError) {
+  std::ostringstream good;
+  WriteLut(FilledNonNegative(Grid(2, 2, 2, DepthSpacing::kUniformZ)), good);
+  const std::string bytes = good.str();
+  const std::size_t magic_end = bytes.find('\n') + 1;
+  const std::size_t header_end = bytes.find('\n', magic_end);
+  const nlohmann::json header = nlohmann::json::parse(bytes.substr(magic_end, header_end - magic_end));
+  const auto with_grid = [&](int nx, int ny, int nz) {
+    nlohmann::json changed = header;
+    changed["nx"] = nx;
+    changed["ny"] = ny;
+    changed["nz"] = nz;
+    changed["num_values"] = 6LL * (nx + 1) * (ny + 1) * nz;
+    return bytes.substr(0, magic_end) + changed.dump() + bytes.substr(header_end);
+  };
+  // A count beyond int, or not whole, was cast by the JSON library (undefined behaviour; fuzz/board_fuzzer found
+  // it in the board files, which read their counts the same way).
+  nlohmann::json huge = header;
+  huge["nx"] = 1e30;
+  EXPECT_NE(ReadError(bytes.substr(0, magic_end) + huge.dump() + bytes.substr(header_end))
+                .find("the LUT header's nx must be a whole number from 0 to 2147483647"),
+            std::string::npos);
+  // 4097 x 4097 x 4096 nodes: more than an int counts.
+  EXPECT_NE(ReadError(with_grid(4096, 4096, 4096)).find("implausibly large"), std::string::npos);
+  // 1001 x 1001 x 100 nodes (601 million values) announced consistently, 108 given.
+  EXPECT_NE(ReadError(with_grid(1000, 1000, 100)).find("promises 601200600 values, the file holds 108"),
+            std::string::npos)
+      << ReadError(with_grid(1000, 1000, 100));
 }
 
 TEST(LutSlabImages, OneAlphaAndOneBetaPicturePerSlab) {
