@@ -1,8 +1,8 @@
 #pragma once
 
 // The memory check every image-by-image stage makes before its first image buffer is allocated
-// (lib/util/memory_budget.h): what the loaded dive holds, one ray table per camera, and what each worker
-// holds for the image it is on. A camera of 20000 x 20000 pixels, or a few hundred workers, is refused
+// (lib/util/memory_budget.h): what the loaded dive holds, the ray table of its largest camera, and what
+// each worker holds for the image it is on. A camera of 20000 x 20000 pixels, or a few hundred workers, is refused
 // with the estimate and the limit in one line, instead of being swapped to death or killed by the kernel.
 
 #include <cstddef>
