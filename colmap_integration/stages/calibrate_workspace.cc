@@ -454,9 +454,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& options) {
 CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedDive& dive) {
   given.Check();
   const InputsAndOutputs paths = PathsOf(given, dive.workspace());
-  paths.Check();
-  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
-  paths.RemoveStaleTemporaries();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("calibrate", dive, given.num_threads, kImageStageBytesPerPixel, given.memory_limit_bytes);
   // The rig file, read once: its lights are the shading from here on.
   CalibrateOptions options = given;

@@ -47,9 +47,7 @@ MeshSummary MeshWorkspace(const MeshOptions& options) {
   paths.AddWorkspace(workspace, "the workspace");
   paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
   paths.AddOutput(summary.output);
-  paths.Check();
-  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(workspace, paths);
-  paths.RemoveStaleTemporaries();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(workspace, paths);
   const SparseModel model = ReadSparseModel(workspace.sparse_dir);
   const WorkspaceGeoreference georeference = ResolveGeoreference(options.georeference, workspace);
   if (options.up_axis != "auto") {

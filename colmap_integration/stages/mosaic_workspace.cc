@@ -107,9 +107,7 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options) {
 MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& dive) {
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
-  paths.Check();
-  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
-  paths.RemoveStaleTemporaries();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("mosaic", dive, options.ortho.baking.num_threads, kImageStageBytesPerPixel,
                    options.memory_limit_bytes, FusionBudget(options.ortho.baking.fusion));
   const auto start = std::chrono::steady_clock::now();

@@ -52,9 +52,7 @@ RaycastSummary RaycastWorkspace(const RaycastOptions& options) {
 RaycastSummary RaycastWorkspace(const RaycastOptions& options, const LoadedDive& dive) {
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
-  paths.Check();
-  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
-  paths.RemoveStaleTemporaries();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("raycast", dive, options.num_threads, kRaycastStageBytesPerPixel, options.memory_limit_bytes);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();

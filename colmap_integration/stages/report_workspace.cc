@@ -359,9 +359,7 @@ ReportSummary WriteReport(const ReportOptions& options) {
   paths.AddWorkspace(workspace, "the workspace");
   paths.AddInput(lut, "the LUT");
   paths.AddOutput(folder);
-  paths.Check();
-  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(workspace, paths);
-  paths.RemoveStaleTemporaries();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(workspace, paths);
   PictureEmbedder pictures;
   std::ostringstream html;
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());

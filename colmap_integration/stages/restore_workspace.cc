@@ -99,9 +99,7 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options) {
 RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive& dive) {
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
-  paths.Check();
-  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
-  paths.RemoveStaleTemporaries();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("restore", dive, options.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();

@@ -67,9 +67,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options) {
 TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive& dive) {
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
-  paths.Check();
-  const std::unique_ptr<ExclusiveFileLock> workspace_lock = LockWorkspaceFor(dive.workspace(), paths);
-  paths.RemoveStaleTemporaries();
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("texture", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
                    FusionBudget(options.baking.fusion));
   const auto start = std::chrono::steady_clock::now();

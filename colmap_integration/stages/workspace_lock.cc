@@ -9,4 +9,11 @@ std::unique_ptr<ExclusiveFileLock> LockWorkspaceFor(const Workspace& workspace, 
   return std::make_unique<ExclusiveFileLock>(WorkspaceLockPath(workspace), workspace.root.string());
 }
 
+std::unique_ptr<ExclusiveFileLock> ClaimOutputs(const Workspace& workspace, const InputsAndOutputs& paths) {
+  paths.Check();
+  std::unique_ptr<ExclusiveFileLock> lock = LockWorkspaceFor(workspace, paths);
+  paths.RemoveStaleTemporaries();
+  return lock;
+}
+
 }  // namespace lutex

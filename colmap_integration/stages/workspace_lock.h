@@ -21,4 +21,9 @@ std::filesystem::path WorkspaceLockPath(const Workspace& workspace);
 // std::runtime_error naming the holder when another process holds it.
 std::unique_ptr<ExclusiveFileLock> LockWorkspaceFor(const Workspace& workspace, const InputsAndOutputs& paths);
 
+// What every stage does before its first write, in this order: refuses an output over or inside an input
+// (paths.Check()), takes the workspace's lock as above, then removes what killed writers left of the
+// outputs (paths.RemoveStaleTemporaries(), safe once no other lutex writes there). Returns the lock.
+std::unique_ptr<ExclusiveFileLock> ClaimOutputs(const Workspace& workspace, const InputsAndOutputs& paths);
+
 }  // namespace lutex
