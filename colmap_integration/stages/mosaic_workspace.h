@@ -37,7 +37,8 @@ struct MosaicOptions {
   std::size_t gdal_cache_bytes = std::size_t{256} << 20;
   OrthoMosaicOptions ortho;  // tile size, and the texture's visibility, selection and fusion
   // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
-  // available memory. The estimate counts the fusion's budget (ortho.baking.fusion) as a part.
+  // available memory. The estimate counts the fusion's budget (ortho.baking.fusion) and the faces'
+  // tables as parts.
   std::size_t memory_limit_bytes = 0;
   void Check() const;
 };

@@ -10,7 +10,7 @@
 
 #include "colmap_integration/stages/loaded_dive.h"
 #include "lib/util/memory_budget.h"
-#include "texturing/texel_fusion.h"
+#include "texturing/texture_baker.h"
 
 namespace lutex {
 
@@ -23,8 +23,10 @@ inline constexpr double kRaycastStageBytesPerPixel = kRaycastMapBytesPerPixel + 
 // the restored albedo and confidence (24) and their encoded copies (9).
 inline constexpr double kImageStageBytesPerPixel = kRaycastMapBytesPerPixel + 6.0 + 12.0 + 24.0 + 9.0;
 
-// Texture and mosaic: the texel samples fusion may hold at once (texel_fusion.h), as an estimate's part.
-MemoryEstimate FusionBudget(const TexelFusionOptions& fusion);
+// Texture and mosaic, as an estimate's parts: the texel samples fusion may hold at once (texel_fusion.h),
+// and the tables kept for every face of the mesh while it is baked (texture_baker.h): its view candidates,
+// the view selection's data costs and messages, its neighbours, its view, its chart corners and texels.
+MemoryEstimate TextureBakingMemory(const TextureBakingOptions& baking, std::size_t num_faces);
 
 // Throws std::runtime_error "`stage` needs about X (parts), more than the memory limit of Y (...)" when
 // the dive, the ray table of its largest camera, `num_threads` workers at `bytes_per_pixel` on the largest

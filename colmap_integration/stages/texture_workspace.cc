@@ -69,7 +69,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("texture", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
-                   FusionBudget(options.baking.fusion));
+                   TextureBakingMemory(options.baking, dive.mesh().faces.size()));
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();

@@ -30,7 +30,8 @@ struct TextureOptions {
   ImageEncoding page_encoding = ImageEncoding::kSrgb8;
   TextureBakingOptions baking;
   // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
-  // available memory. The estimate counts the fusion's budget (baking.fusion.memory_limit_bytes) as a part.
+  // available memory. The estimate counts the fusion's budget (baking.fusion.memory_limit_bytes) and the
+  // faces' tables as parts.
   std::size_t memory_limit_bytes = 0;
   // The model's up axis for the GLB ("x", "-x", "y", "-y", "z", "-z"), or "auto": opposite the cameras'
   // mean viewing direction, snapped to an axis within 10 degrees (lib/geometry/up_direction.h).

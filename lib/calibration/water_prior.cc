@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lib/geometry/mesh.h"
+#include "lib/model/shading.h"
 #include "lib/model/simulator.h"
 #include "lib/model/surface_albedo.h"
 #include "lib/util/median.h"
@@ -31,6 +32,11 @@ std::vector<double> GlobalAttenuations() {
 constexpr int kLocalSteps = 10;
 // Beam profiles tried when the rig's beams are a guess (cosine-power exponents; 0 = isotropic).
 constexpr double kBeamExponents[] = {0.5, 1.0, 2.0, 3.0, 4.0, 6.0, 8.0};
+// In air, where a guessed rig's single light (a flash) may be: a square of this half-size across the
+// camera's x and y, searched by kFlashCoarseStep, then by kFlashFineStep around the best of that.
+constexpr double kFlashSearchHalfSize = 0.3;  // metres
+constexpr double kFlashCoarseStep = 0.05;
+constexpr double kFlashFineStep = 0.01;
 
 // The fitted observations, per kind, as the fit needs them (one channel at a time).
 struct FitData {
@@ -66,6 +72,32 @@ Eigen::Vector3d NoiseFloor(const FitData& data) {
     floor[c] = std::max(MedianInPlace(values), 1e-6);
   }
   return floor;
+}
+
+// cos_theta of every observation as the fit sees it for one candidate rig. In air, shaded with the
+// candidate (lib/model/shading.h): where a flash beside the lens is, is what shading needs, and how it shades
+// the tilted targets is what tells it. In water, as the observations were shaded (from the camera while the
+// rig is a guess): shaded with each candidate instead, the Blender clear boards chose isotropic lights at
+// +-0.4 m rather than +-0.6 m and the worst ColorChecker patch went from 5.75 to 9.72 pp, since isotropic
+// candidates do not model the spots' cones that shade its tilted patches. An observation without a normal
+// keeps its own cos_theta.
+struct RigCosines {
+  std::vector<double> known, first, second;
+};
+
+RigCosines CosinesFor(const LightRig& rig, const FitData& data, bool shade_with_rig) {
+  Shading shading;
+  shading.rig = rig;
+  const auto cosine = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double own) {
+    return normal.isZero() || !shade_with_rig ? own : shading.Cosine(point, normal);
+  };
+  RigCosines cosines;
+  for (const KnownColorObservation* o : data.known) cosines.known.push_back(cosine(o->point_in_cam, o->normal_in_cam, o->cos_theta));
+  for (const CorrespondenceObservation* o : data.correspondences) {
+    cosines.first.push_back(cosine(o->first.point_in_cam, o->first.normal_in_cam, o->first.cos_theta));
+    cosines.second.push_back(cosine(o->second.point_in_cam, o->second.normal_in_cam, o->second.cos_theta));
+  }
+  return cosines;
 }
 
 // The simulator's alpha and beta at every observation for one water (one value per channel).
@@ -153,21 +185,22 @@ struct ChannelFit {
   double weight_sum = 0.0;
 };
 
-// The weighted least-squares (k, s >= 0) for one channel, alpha from `a`, beta from `b`.
-ChannelFit FitScales(const FitData& data, const ModelSamples& a, const ModelSamples& b, int c) {
+// The weighted least-squares (k, s >= 0) for one channel, alpha from `a`, beta from `b`, shaded as `cosines`.
+ChannelFit FitScales(const FitData& data, const RigCosines& cosines, const ModelSamples& a, const ModelSamples& b,
+                     int c) {
   // Normal equations of  sum w (k P + s B - I)^2  and  sum w (R - s Q)^2.
   double pp = 0, pb = 0, bb = 0, pi = 0, bi = 0, ii = 0, weight_sum = 0;
   const auto relative = [&](double intensity) { return 1.0 / std::pow(std::max(intensity, 0.0) + data.floor[c], 2); };
   for (std::size_t n = 0; n < data.known.size(); ++n) {
     const KnownColorObservation& o = *data.known[n];
     const double w = relative(o.intensity[c]);
-    const double p = a.known_alpha[n][c] * o.cos_theta * o.albedo[c], q = b.known_beta[n][c], y = o.intensity[c];
+    const double p = a.known_alpha[n][c] * cosines.known[n] * o.albedo[c], q = b.known_beta[n][c], y = o.intensity[c];
     pp += w * p * p, pb += w * p * q, bb += w * q * q, pi += w * p * y, bi += w * q * y, ii += w * y * y;
     weight_sum += 1.0;
   }
   for (std::size_t n = 0; n < data.correspondences.size(); ++n) {
     const CorrespondenceObservation& o = *data.correspondences[n];
-    const double u = a.second_alpha[n][c] * o.second.cos_theta, v = a.first_alpha[n][c] * o.first.cos_theta;
+    const double u = a.second_alpha[n][c] * cosines.second[n], v = a.first_alpha[n][c] * cosines.first[n];
     const double norm = 0.5 * (u + v);
     if (!(norm > 0)) continue;
     const double w = relative(0.5 * (o.first.intensity[c] + o.second.intensity[c]));
@@ -195,8 +228,8 @@ ChannelFit FitScales(const FitData& data, const ModelSamples& a, const ModelSamp
   }
   const double det = pp * bb - pb * pb;
   double k = det > 0 ? (pi * bb - bi * pb) / det : 0.0, s = det > 0 ? (bi * pp - pi * pb) / det : 0.0;
-  if (!(s >= 0.0) || !(k >= 0.0)) {
-    // On a bound: the better of s = 0 and k = 0.
+  if (!(det > 0) || !(s >= 0.0) || !(k >= 0.0)) {
+    // On a bound, or one of the two unseen (in air nothing sees backscatter): the better of s = 0 and k = 0.
     const double k_only = pp > 0 ? std::max(pi / pp, 0.0) : 0.0, s_only = bb > 0 ? std::max(bi / bb, 0.0) : 0.0;
     if (cost(k_only, 0.0) <= cost(0.0, s_only)) k = k_only, s = 0.0;
     else k = 0.0, s = s_only;
@@ -208,13 +241,13 @@ ChannelFit FitScales(const FitData& data, const ModelSamples& a, const ModelSamp
 }
 
 // Without known colours: k so the correspondences' views restore, on average, to the grey-world albedo.
-double GreyWorldSignalScale(const FitData& data, const ModelSamples& a, const ModelSamples& b, int c, double s,
-                            double grey_world) {
+double GreyWorldSignalScale(const FitData& data, const RigCosines& cosines, const ModelSamples& a,
+                            const ModelSamples& b, int c, double s, double grey_world) {
   double signal = 0.0, model = 0.0;
   for (std::size_t n = 0; n < data.correspondences.size(); ++n) {
     const CorrespondenceObservation& o = *data.correspondences[n];
     signal += (o.first.intensity[c] - s * b.first_beta[n][c]) + (o.second.intensity[c] - s * b.second_beta[n][c]);
-    model += a.first_alpha[n][c] * o.first.cos_theta + a.second_alpha[n][c] * o.second.cos_theta;
+    model += a.first_alpha[n][c] * cosines.first[n] + a.second_alpha[n][c] * cosines.second[n];
   }
   return model > 0 && signal > 0 ? signal / model / grey_world : 0.0;
 }
@@ -226,7 +259,7 @@ struct Best {
 
 // The best pair per channel among alpha from `signal_samples[i]` and beta from `backscatter_samples[j]`,
 // whose attenuations per channel are `signal_attenuations[i]`, `backscatter_attenuations[j]`.
-void SearchPairs(const FitData& data, const std::vector<ModelSamples>& signal_samples,
+void SearchPairs(const FitData& data, const RigCosines& cosines, const std::vector<ModelSamples>& signal_samples,
                  const std::vector<Eigen::Vector3d>& signal_attenuations,
                  const std::vector<ModelSamples>& backscatter_samples,
                  const std::vector<Eigen::Vector3d>& backscatter_attenuations, int num_threads, Best* best) {
@@ -234,7 +267,7 @@ void SearchPairs(const FitData& data, const std::vector<ModelSamples>& signal_sa
     const int c = static_cast<int>(channel);
     for (std::size_t i = 0; i < signal_samples.size(); ++i) {
       for (std::size_t j = 0; j < backscatter_samples.size(); ++j) {
-        const ChannelFit fit = FitScales(data, signal_samples[i], backscatter_samples[j], c);
+        const ChannelFit fit = FitScales(data, cosines, signal_samples[i], backscatter_samples[j], c);
         // Ties (a constraint that does not see one of the two) go to the first, lowest attenuation.
         if (fit.cost < best->fit[channel].cost * (1.0 - 1e-12)) {
           best->fit[channel] = fit;
@@ -251,7 +284,7 @@ class WaterSearch {
  public:
   WaterSearch(const FitData& data, const LightRig& rig, const Camera& camera, const FrustumLutGrid& coarse,
               const WaterPriorOptions& options)
-      : data_(data), renderer_(rig, camera, coarse, options.start), options_(options) {}
+      : data_(data), cosines_(CosinesFor(rig, data, options.start.IsAir())), renderer_(rig, camera, coarse, options.start), options_(options) {}
 
   std::vector<ModelSamples> SampleAll(const std::vector<Eigen::Vector3d>& attenuations) const {
     std::vector<ModelSamples> samples(attenuations.size());
@@ -260,19 +293,26 @@ class WaterSearch {
     return samples;
   }
 
-  // The best pair per channel over the global grid of attenuations.
+  // The best pair per channel over the global grid of attenuations (in air, no attenuation).
   Best Global() const {
     std::vector<Eigen::Vector3d> global;
-    for (double value : GlobalAttenuations()) global.push_back(Eigen::Vector3d::Constant(value));
+    if (options_.start.IsAir()) {
+      global.push_back(Eigen::Vector3d::Zero());
+    } else {
+      for (double value : GlobalAttenuations()) global.push_back(Eigen::Vector3d::Constant(value));
+    }
     const std::vector<ModelSamples> samples = SampleAll(global);
     Best best;
-    SearchPairs(data_, samples, global, samples, global, options_.num_threads, &best);
+    SearchPairs(data_, cosines_, samples, global, samples, global, options_.num_threads, &best);
+    if (options_.start.IsAir()) SetGreyWorldSignalScale(samples.front(), samples.front(), &best);
     return best;
   }
 
   // Improves `best` over 2 x kLocalSteps + 1 steps across the global spacing on either side of each
-  // channel's best; without known colours, then sets k from the grey-world albedo.
+  // channel's best (in air there is nothing to refine); without known colours, then sets k from the
+  // grey-world albedo.
   void Refine(Best* best) const {
+    if (options_.start.IsAir()) return;
     const std::vector<double> values = GlobalAttenuations();
     const auto spacing_at = [&](double value) {
       const auto above = std::upper_bound(values.begin(), values.end(), value + 1e-9);
@@ -288,17 +328,23 @@ class WaterSearch {
       return around;
     };
     const std::vector<Eigen::Vector3d> signal = local(best->signal), backscatter = local(best->backscatter);
-    SearchPairs(data_, SampleAll(signal), signal, SampleAll(backscatter), backscatter, options_.num_threads, best);
-    if (!data_.known.empty()) return;
-    const ModelSamples a = renderer_.Sample(best->signal, data_), b = renderer_.Sample(best->backscatter, data_);
-    for (int c = 0; c < 3; ++c) {
-      best->fit[c].signal_scale =
-          GreyWorldSignalScale(data_, a, b, c, best->fit[c].backscatter_scale, options_.grey_world_albedo[c]);
-    }
+    SearchPairs(data_, cosines_, SampleAll(signal), signal, SampleAll(backscatter), backscatter, options_.num_threads,
+                best);
+    SetGreyWorldSignalScale(renderer_.Sample(best->signal, data_), renderer_.Sample(best->backscatter, data_), best);
   }
 
  private:
+  // Without known colours, k from the grey-world albedo (alpha from `a`, beta from `b`).
+  void SetGreyWorldSignalScale(const ModelSamples& a, const ModelSamples& b, Best* best) const {
+    if (!data_.known.empty()) return;
+    for (int c = 0; c < 3; ++c) {
+      best->fit[c].signal_scale = GreyWorldSignalScale(data_, cosines_, a, b, c, best->fit[c].backscatter_scale,
+                                                       options_.grey_world_albedo[c]);
+    }
+  }
+
   const FitData& data_;
+  const RigCosines cosines_;
   const ModelRenderer renderer_;
   const WaterPriorOptions& options_;
 };
@@ -313,8 +359,8 @@ LightRig WithBeam(const LightRig& rig, double exponent) {
   return beamed;
 }
 
-// Rigs tried when the rig is a guess: the light split into a symmetric pair 0.1 to 0.6 m either side
-// along x or y (isotropic), and the guess with cosine-power beams.
+// Rigs tried when the rig is a guess, in water: the light split into a symmetric pair 0.1 to 0.6 m either
+// side along x or y (isotropic), and the guess with cosine-power beams.
 std::vector<LightRig> CandidateRigs(const LightRig& guess) {
   std::vector<LightRig> rigs;
   for (double exponent : kBeamExponents) rigs.push_back(WithBeam(guess, exponent));
@@ -334,10 +380,40 @@ std::vector<LightRig> CandidateRigs(const LightRig& guess) {
   return rigs;
 }
 
+// Rigs tried in air when the rig is a guess: its light (a flash) moved by `step` over a square of
+// half-size `half_size` around `centre` across the camera's x and y, isotropic and with every beam.
+std::vector<LightRig> CandidateFlashes(const LightRig& guess, const Eigen::Vector3d& centre, double half_size,
+                                       double step) {
+  std::vector<LightRig> rigs;
+  const int steps = static_cast<int>(std::lround(half_size / step));
+  for (int iy = -steps; iy <= steps; ++iy) {
+    for (int ix = -steps; ix <= steps; ++ix) {
+      for (double exponent : {0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0}) {
+        LightRig rig = WithBeam(guess, exponent);
+        for (Light& light : rig.lights) {
+          light.position_in_cam = centre + Eigen::Vector3d(ix * step, iy * step, 0.0);
+          light.name = "fitted flash";
+        }
+        rigs.push_back(rig);
+      }
+    }
+  }
+  return rigs;
+}
+
 double TotalCost(const Best& best) {
   double total = 0.0;
   for (const ChannelFit& fit : best.fit) total += fit.weight_sum > 0 ? fit.cost / fit.weight_sum : 0.0;
   return total;
+}
+
+// The candidate that fits best, or `*rig` itself when none does better than `*best`.
+void ChooseRig(const FitData& data, const std::vector<LightRig>& candidates, const Camera& camera,
+               const FrustumLutGrid& coarse, const WaterPriorOptions& options, LightRig* rig, Best* best) {
+  for (const LightRig& candidate : candidates) {
+    const Best fit = WaterSearch(data, candidate, camera, coarse, options).Global();
+    if (TotalCost(fit) < TotalCost(*best)) *best = fit, *rig = candidate;
+  }
 }
 
 }  // namespace
@@ -363,15 +439,19 @@ WaterPrior FitWaterPrior(const ObservationSet& observations, const LightRig& rig
   // With a guessed rig, the rig is chosen on the global grid of waters, then refined with its own.
   LightRig fitted_rig = rig;
   Best best = WaterSearch(data, rig, camera, coarse, options).Global();
-  if (options.fit_beam) {
-    for (const LightRig& candidate : CandidateRigs(rig)) {
-      const Best fit = WaterSearch(data, candidate, camera, coarse, options).Global();
-      if (TotalCost(fit) < TotalCost(best)) best = fit, fitted_rig = candidate;
-    }
+  if (options.fit_beam && !options.start.IsAir()) {
+    ChooseRig(data, CandidateRigs(rig), camera, coarse, options, &fitted_rig, &best);
+  } else if (options.fit_beam && rig.lights.size() == 1) {
+    const Eigen::Vector3d guess = rig.lights[0].position_in_cam;
+    ChooseRig(data, CandidateFlashes(rig, guess, kFlashSearchHalfSize, kFlashCoarseStep), camera, coarse, options,
+              &fitted_rig, &best);
+    ChooseRig(data, CandidateFlashes(rig, fitted_rig.lights[0].position_in_cam, kFlashCoarseStep, kFlashFineStep),
+              camera, coarse, options, &fitted_rig, &best);
   }
   WaterSearch(data, fitted_rig, camera, coarse, options).Refine(&best);
 
   WaterPrior prior;
+  prior.in_air = options.start.IsAir();
   prior.signal_attenuation = best.signal;
   prior.backscatter_attenuation = best.backscatter;
   prior.rig = fitted_rig;
@@ -393,11 +473,12 @@ WaterPrior FitWaterPrior(const ObservationSet& observations, const LightRig& rig
 std::string DescribeWaterPrior(const WaterPrior& prior) {
   char text[400];
   std::snprintf(text, sizeof(text),
-                "attenuation of the signal %.3f %.3f %.3f, of backscatter %.3f %.3f %.3f per m (r g b); %zu light(s)",
+                "attenuation of the signal %.3f %.3f %.3f, of backscatter %.3f %.3f %.3f per m (r g b); ",
                 prior.signal_attenuation.x(), prior.signal_attenuation.y(), prior.signal_attenuation.z(),
                 prior.backscatter_attenuation.x(), prior.backscatter_attenuation.y(),
-                prior.backscatter_attenuation.z(), prior.rig.lights.size());
-  std::string description = text;
+                prior.backscatter_attenuation.z());
+  std::string description = prior.in_air ? "in air; " : text;
+  description += std::to_string(prior.rig.lights.size()) + " light(s)";
   for (std::size_t l = 0; l < prior.rig.lights.size(); ++l) {
     const Light& light = prior.rig.lights[l];
     std::snprintf(text, sizeof(text), "%s (%.2f, %.2f, %.2f) m %s", l == 0 ? " at" : ",", light.position_in_cam.x(),

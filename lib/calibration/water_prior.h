@@ -24,7 +24,13 @@
 // each residual divided by (its intensity + the median intensity), so a dim far observation counts as
 // much as a bright near one in relative terms (what restoration errors are made of), while one darker
 // than the median (black squares, noise) counts in absolute terms. Without known colours k is set
-// so the correspondences' surfaces average to the grey-world albedo. In air there is nothing to fit.
+// so the correspondences' surfaces average to the grey-world albedo. Every candidate rig shades the
+// observations itself (cos_theta from their normals, lib/model/shading.h).
+//
+// In air (a start water with no attenuation) only k is fitted, and with a guessed rig the position of its
+// single light: a flash beside the lens, searched over +-0.3 m across the camera's x and y. It shades tilted
+// surfaces differently from a light at the camera: on an off-axis flash's white board the camera-centred
+// shading leaves a left-right gradient of +-8 %.
 
 #include <string>
 
@@ -44,13 +50,16 @@ struct WaterPriorOptions {
   // Without known colours: the mean albedo of the correspondences' surfaces (calibrator.h).
   Eigen::Vector3d grey_world_albedo = Eigen::Vector3d::Zero();
   // The rig is a guess (a light at the camera, no beam profile given): also fit the beam, a cosine-power
-  // profile cos(psi)^n along the camera axis, n from 0 (isotropic) to 8, one for all lights.
+  // profile cos(psi)^n along the camera axis, n from 0 (isotropic) to 8, one for all lights, and where the
+  // lights are (in water a symmetric pair beside the camera, in air the single light's position).
   bool fit_beam = false;
   // Threads; <= 0 means all cores. Results do not depend on it.
   int num_threads = 0;
 };
 
 struct WaterPrior {
+  // Fitted in air: no attenuation, no backscatter, only the light.
+  bool in_air = false;
   // Per channel, per metre: signal attenuation cs and backscatter attenuation cb.
   Eigen::Vector3d signal_attenuation = Eigen::Vector3d::Zero();
   Eigen::Vector3d backscatter_attenuation = Eigen::Vector3d::Zero();
@@ -70,7 +79,7 @@ struct WaterPrior {
 WaterPrior FitWaterPrior(const ObservationSet& observations, const LightRig& rig, const Camera& camera,
                          const FrustumLutGrid& grid, const WaterPriorOptions& options);
 
-// The fitted attenuations and the rig's lights, one line for messages.
+// The fitted attenuations (in water) and the rig's lights, one line for messages.
 std::string DescribeWaterPrior(const WaterPrior& prior);
 
 }  // namespace lutex

@@ -72,9 +72,9 @@ void CheckGeoreference(const Georeference& georeference) {
 
 Georeference ReadGeoreference(const std::filesystem::path& path) {
   return ReadJsonFile(path, "georeference file", [](const json& root, const std::filesystem::path&) {
-    ExpectKeys(root, "the georeference", {"frame", "crs", "origin"});
+    ExpectKeys(root, "", {"frame", "crs", "origin"});
     Georeference georeference;
-    const std::string frame = TextField(root, "frame", "the georeference", "");
+    const std::string frame = TextField(root, "frame", "", "");
     if (frame == "projected") {
       georeference.frame = Georeference::Frame::kProjected;
     } else if (frame == "enu") {
@@ -82,9 +82,9 @@ Georeference ReadGeoreference(const std::filesystem::path& path) {
     } else {
       throw JsonFieldError("frame must be \"projected\" or \"enu\", not \"" + frame + "\"");
     }
-    georeference.crs = TextField(root, "crs", "the georeference", "");
+    georeference.crs = TextField(root, "crs", "", "");
     if (!root.contains("origin")) throw JsonFieldError("origin is required");
-    georeference.origin = Vector3Field(root, "origin", "the georeference", Eigen::Vector3d::Zero());
+    georeference.origin = Vector3Field(root, "origin", "", Eigen::Vector3d::Zero());
     CheckGeoreference(georeference);
     return georeference;
   });

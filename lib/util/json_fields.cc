@@ -8,17 +8,26 @@ namespace lutex {
 
 using nlohmann::json;
 
+namespace {
+
+// "where.key", or "key" for a key of the document's top level (where is empty).
+std::string KeyPath(const std::string& where, const std::string& key) {
+  return where.empty() ? key : where + "." + key;
+}
+
+}  // namespace
+
 void ExpectKeys(const json& object, const std::string& where, std::initializer_list<const char*> allowed) {
-  if (!object.is_object()) throw JsonFieldError(where + " must be an object");
+  if (!object.is_object()) throw JsonFieldError((where.empty() ? "the file" : where) + " must be a JSON object");
   const std::set<std::string> known(allowed.begin(), allowed.end());
   for (const auto& item : object.items()) {
-    if (known.count(item.key()) == 0) throw JsonFieldError("unknown key " + where + "." + item.key());
+    if (known.count(item.key()) == 0) throw JsonFieldError("unknown key " + KeyPath(where, item.key()));
   }
 }
 
 double NumberField(const json& object, const std::string& key, const std::string& where, double fallback) {
   if (!object.contains(key)) return fallback;
-  if (!object[key].is_number()) throw JsonFieldError(where + "." + key + " must be a number");
+  if (!object[key].is_number()) throw JsonFieldError(KeyPath(where, key) + " must be a number");
   return object[key].get<double>();
 }
 
@@ -49,14 +58,14 @@ long long WholeNumber(const json& value, const std::string& what, long long min,
 long long IntegerField(const json& object, const std::string& key, const std::string& where, long long fallback,
                        long long min, long long max) {
   if (!object.contains(key)) return fallback;
-  if (!object[key].is_number()) throw JsonFieldError(where + "." + key + " must be a number");
-  return WholeNumber(object[key], where + "." + key, min, max);
+  if (!object[key].is_number()) throw JsonFieldError(KeyPath(where, key) + " must be a number");
+  return WholeNumber(object[key], KeyPath(where, key), min, max);
 }
 
 std::string TextField(const json& object, const std::string& key, const std::string& where,
                       const std::string& fallback) {
   if (!object.contains(key)) return fallback;
-  if (!object[key].is_string()) throw JsonFieldError(where + "." + key + " must be a string");
+  if (!object[key].is_string()) throw JsonFieldError(KeyPath(where, key) + " must be a string");
   return object[key].get<std::string>();
 }
 
@@ -66,7 +75,7 @@ Eigen::Vector3d Vector3Field(const json& object, const std::string& key, const s
   const json& value = object[key];
   if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
       !value[2].is_number()) {
-    throw JsonFieldError(where + "." + key + " must be an array of 3 numbers");
+    throw JsonFieldError(KeyPath(where, key) + " must be an array of 3 numbers");
   }
   return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
 }

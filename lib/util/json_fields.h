@@ -21,6 +21,8 @@ struct JsonFieldError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// `where` is the key path of `object` in its document ("lights[1]"), empty for the top level of a file whose
+// keys need no prefix. Every error names the path of the offending key.
 // Throws JsonFieldError when `object` is not an object or has a key outside `allowed`.
 void ExpectKeys(const nlohmann::json& object, const std::string& where, std::initializer_list<const char*> allowed);
 

@@ -304,6 +304,8 @@ std::vector<BadInput> Cases() {
        "raycast" + kDive + " --memory-limit 4096", "{D}/W", "more than the memory limit"},
       {"MemoryLimitBelowWhatTheDiveNeeds", {}, kRestore + " --memory-limit 1", "{D}/W",
        "more than the memory limit of 1 MiB"},
+      {"TextureMemoryLimitBelowWhatTheFacesNeed", {}, "texture" + kDive + " --memory-limit 1", "{D}/W",
+       "the faces' view and chart tables"},
   };
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -150,31 +151,30 @@ TEST(BlenderCalibration, TurbidWaterIsMeasuredAndTheColorCheckerRestored) {
 }
 
 // In air (inair_whiteboard): calibrate from the white board (albedo 0.8) with one known colour, beta held
-// at 0 and shading towards the flash 0.1 m right of the camera (metadata light_rig), restore the frames
-// with the red sphere, and compare the sphere's pixels with their true albedo. Issue bar: 3 %.
-TEST(BlenderCalibration, InAirWhiteboardRestoresTheRedSphere) {
-  const auto dev = testing::SharedDevDatasets();
-  if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
-  testing::TempDir dir;
-  const testing::BlenderDataset dataset = testing::LoadBlenderDataset(*dev / "inair_whiteboard");
+// at 0, shading towards `flash` (or, without one, towards the flash calibrate fits), restore the frames
+// with the red sphere, and return the sorted errors of the sphere's pixel-channels against their true
+// albedo. The calibration is returned in `calibrated`.
+std::vector<double> InAirRedSphereErrors(const fs::path& dev, const std::optional<Eigen::Vector3d>& flash,
+                                         const fs::path& scratch, CalibrateSummary* calibrated) {
+  const testing::BlenderDataset dataset = testing::LoadBlenderDataset(dev / "inair_whiteboard");
   CalibrateOptions calibrate;
   calibrate.workspace = dataset.root;
   calibrate.mesh = dataset.root / "scene" / "mesh.ply";
   calibrate.targets = dataset.root / "metadata.json";
   calibrate.input_encoding = ImageEncoding::kLinear16;
   calibrate.calibration.in_air = true;
-  calibrate.calibration.grid.shading.light_in_cam = dataset.rig.lights.at(0).position_in_cam;
+  if (flash) calibrate.calibration.grid.shading.light_in_cam = *flash;
   calibrate.calibration.grid.z_near = 0.4;
   calibrate.calibration.grid.z_far = 3.0;
-  calibrate.output = dir.path() / "calibration" / "lut.lut";
-  const CalibrateSummary calibrated = CalibrateWorkspace(calibrate);
+  calibrate.output = scratch / "calibration" / "lut.lut";
+  *calibrated = CalibrateWorkspace(calibrate);
 
   RestoreOptions restore;
   restore.workspace = dataset.root;
   restore.mesh = calibrate.mesh;
-  restore.lut = calibrated.lut;
+  restore.lut = calibrated->lut;
   restore.input_encoding = ImageEncoding::kLinear16;
-  restore.output = dir.path() / "restored";
+  restore.output = scratch / "restored";
   RestoreWorkspace(restore);
 
   const Eigen::Vector3f sphere_albedo(0.57758f, 0.021219f, 0.021219f);  // metadata targets red_sphere
@@ -191,12 +191,44 @@ TEST(BlenderCalibration, InAirWhiteboardRestoresTheRedSphere) {
       }
     }
   }
-  ASSERT_GT(errors.size(), 10000u);
   std::sort(errors.begin(), errors.end());
+  return errors;
+}
+
+// The flash's position given (metadata light_rig: 0.1 m right of the camera). Issue bar: 3 %.
+TEST(BlenderCalibration, InAirWhiteboardRestoresTheRedSphere) {
+  const auto dev = testing::SharedDevDatasets();
+  if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
+  testing::TempDir dir;
+  const Eigen::Vector3d flash = testing::LoadBlenderDataset(*dev / "inair_whiteboard").rig.lights.at(0).position_in_cam;
+  CalibrateSummary calibrated;
+  const std::vector<double> errors = InAirRedSphereErrors(*dev, flash, dir.path(), &calibrated);
+  ASSERT_GT(errors.size(), 10000u);
   std::printf("inair_whiteboard red sphere: %zu pixel-channels, median %.2f, p90 %.2f (residual RMS %.4f)\n",
               errors.size(), errors[errors.size() / 2], errors[errors.size() * 9 / 10],
               calibrated.calibration.known_color_rms.x());
   EXPECT_LE(errors[errors.size() / 2], 3.0);
+}
+
+// Without the flash's position: calibrate fits it (lib/calibration/water_prior.h) and shades with it. The
+// issue's goal: within 1.25x of the error with the position given, where camera-centred shading left a
+// gradient of +-8 % across the board.
+TEST(BlenderCalibration, InAirTheFittedFlashRestoresTheRedSphereAsTheGivenOneDoes) {
+  const auto dev = testing::SharedDevDatasets();
+  if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
+  testing::TempDir dir;
+  const Eigen::Vector3d flash = testing::LoadBlenderDataset(*dev / "inair_whiteboard").rig.lights.at(0).position_in_cam;
+  CalibrateSummary calibrated;
+  const std::vector<double> errors = InAirRedSphereErrors(*dev, std::nullopt, dir.path(), &calibrated);
+  ASSERT_GT(errors.size(), 10000u);
+  ASSERT_TRUE(calibrated.water_prior.has_value());
+  ASSERT_EQ(calibrated.water_prior->rig.lights.size(), 1u);
+  const Eigen::Vector3d fitted = calibrated.water_prior->rig.lights[0].position_in_cam;
+  std::printf("inair_whiteboard, fitted flash at (%.3f, %.3f, %.3f) m: red sphere median %.2f, p90 %.2f\n",
+              fitted.x(), fitted.y(), fitted.z(), errors[errors.size() / 2], errors[errors.size() * 9 / 10]);
+  EXPECT_LT((fitted - flash).norm(), 0.03);
+  EXPECT_LE(errors[errors.size() / 2], 3.0);
+  EXPECT_LE(errors[errors.size() * 9 / 10], 3.0);
 }
 
 }  // namespace
