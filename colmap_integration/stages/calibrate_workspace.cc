@@ -241,7 +241,8 @@ nlohmann::json Vector3Json(const Eigen::Vector3d& value) { return {value.x(), va
 
 // The fitted water (per channel r, g, b) and the rig it was rendered with.
 nlohmann::json WaterPriorJson(const WaterPrior& prior) {
-  return {{"signal_attenuation_per_m", Vector3Json(prior.signal_attenuation)},
+  return {{"in_air", prior.in_air},
+          {"signal_attenuation_per_m", Vector3Json(prior.signal_attenuation)},
           {"backscatter_attenuation_per_m", Vector3Json(prior.backscatter_attenuation)},
           {"signal_scale", Vector3Json(prior.signal_scale)},
           {"backscatter_scale", Vector3Json(prior.backscatter_scale)},
@@ -369,7 +370,9 @@ WaterPriorOptions WaterPriorOptionsOf(const CalibrateOptions& options) {
   prior_options.start = ReferenceWater(options);
   prior_options.grey_world_albedo = options.calibration.grey_world_albedo;
   prior_options.num_threads = options.num_threads;
-  prior_options.fit_beam = options.calibration.grid.shading.rig.lights.empty();
+  // In air the guess is a flash, and --shading-light says where it is.
+  prior_options.fit_beam = options.calibration.grid.shading.rig.lights.empty() &&
+                           !(options.calibration.in_air && !options.calibration.grid.shading.light_in_cam.isZero());
   return prior_options;
 }
 

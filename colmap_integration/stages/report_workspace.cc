@@ -202,7 +202,7 @@ void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs:
       for (std::size_t c = 0; c < 3; ++c) html << (c ? " / " : "") << level.at("final_cost")[c].get<double>();
       html << std::fixed << "</td></tr>";
     }
-    if (summary.contains("water_prior")) {
+    if (summary.contains("water_prior") && !summary.at("water_prior").value("in_air", false)) {
       const auto& prior = summary.at("water_prior");
       html << "<tr><td>water prior: attenuation of the signal, per m (R / G / B)</td><td>"
            << Vector(prior.at("signal_attenuation_per_m"), 3) << "</td></tr>"

@@ -330,7 +330,9 @@ class WaterSearch {
     const std::vector<Eigen::Vector3d> signal = local(best->signal), backscatter = local(best->backscatter);
     SearchPairs(data_, cosines_, SampleAll(signal), signal, SampleAll(backscatter), backscatter, options_.num_threads,
                 best);
-    SetGreyWorldSignalScale(renderer_.Sample(best->signal, data_), renderer_.Sample(best->backscatter, data_), best);
+    if (data_.known.empty()) {
+      SetGreyWorldSignalScale(renderer_.Sample(best->signal, data_), renderer_.Sample(best->backscatter, data_), best);
+    }
   }
 
  private:
@@ -407,12 +409,19 @@ double TotalCost(const Best& best) {
   return total;
 }
 
-// The candidate that fits best, or `*rig` itself when none does better than `*best`.
+// The candidate that fits best, or `*rig` itself when none does better than `*best`. Candidates are
+// searched in parallel, each on one thread, and chosen in their order: the result does not depend on the
+// thread count.
 void ChooseRig(const FitData& data, const std::vector<LightRig>& candidates, const Camera& camera,
                const FrustumLutGrid& coarse, const WaterPriorOptions& options, LightRig* rig, Best* best) {
-  for (const LightRig& candidate : candidates) {
-    const Best fit = WaterSearch(data, candidate, camera, coarse, options).Global();
-    if (TotalCost(fit) < TotalCost(*best)) *best = fit, *rig = candidate;
+  WaterPriorOptions one_thread = options;
+  one_thread.num_threads = 1;
+  std::vector<Best> fits(candidates.size());
+  ParallelFor(candidates.size(), options.num_threads, [&](std::size_t i) {
+    fits[i] = WaterSearch(data, candidates[i], camera, coarse, one_thread).Global();
+  });
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (TotalCost(fits[i]) < TotalCost(*best)) *best = fits[i], *rig = candidates[i];
   }
 }
 

@@ -24,13 +24,13 @@
 // each residual divided by (its intensity + the median intensity), so a dim far observation counts as
 // much as a bright near one in relative terms (what restoration errors are made of), while one darker
 // than the median (black squares, noise) counts in absolute terms. Without known colours k is set
-// so the correspondences' surfaces average to the grey-world albedo. Every candidate rig shades the
-// observations itself (cos_theta from their normals, lib/model/shading.h).
+// so the correspondences' surfaces average to the grey-world albedo.
 //
 // In air (a start water with no attenuation) only k is fitted, and with a guessed rig the position of its
-// single light: a flash beside the lens, searched over +-0.3 m across the camera's x and y. It shades tilted
-// surfaces differently from a light at the camera: on an off-axis flash's white board the camera-centred
-// shading leaves a left-right gradient of +-8 %.
+// single light: a flash beside the lens, which shades tilted surfaces differently from a light at the
+// camera. It is searched over +-0.3 m across the camera's x and y, each candidate shading the observations
+// itself (cos_theta from their normals, lib/model/shading.h). In water the candidate rigs are compared on
+// the observations as they were shaded (water_prior.cc says why).
 
 #include <string>
 

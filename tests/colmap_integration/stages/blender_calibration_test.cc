@@ -211,24 +211,29 @@ TEST(BlenderCalibration, InAirWhiteboardRestoresTheRedSphere) {
 }
 
 // Without the flash's position: calibrate fits it (lib/calibration/water_prior.h) and shades with it. The
-// issue's goal: within 1.25x of the error with the position given, where camera-centred shading left a
-// gradient of +-8 % across the board.
+// issue's goal: within 1.25x of the error with the position given (camera-centred shading left a gradient
+// of +-8 % across the board); 0.05 pp of slack, as the given position's errors are near 0.
 TEST(BlenderCalibration, InAirTheFittedFlashRestoresTheRedSphereAsTheGivenOneDoes) {
   const auto dev = testing::SharedDevDatasets();
   if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
-  testing::TempDir dir;
+  testing::TempDir given_dir, fitted_dir;
   const Eigen::Vector3d flash = testing::LoadBlenderDataset(*dev / "inair_whiteboard").rig.lights.at(0).position_in_cam;
-  CalibrateSummary calibrated;
-  const std::vector<double> errors = InAirRedSphereErrors(*dev, std::nullopt, dir.path(), &calibrated);
+  CalibrateSummary given_calibration, calibrated;
+  const std::vector<double> given = InAirRedSphereErrors(*dev, flash, given_dir.path(), &given_calibration);
+  const std::vector<double> errors = InAirRedSphereErrors(*dev, std::nullopt, fitted_dir.path(), &calibrated);
   ASSERT_GT(errors.size(), 10000u);
+  ASSERT_EQ(errors.size(), given.size());
   ASSERT_TRUE(calibrated.water_prior.has_value());
   ASSERT_EQ(calibrated.water_prior->rig.lights.size(), 1u);
   const Eigen::Vector3d fitted = calibrated.water_prior->rig.lights[0].position_in_cam;
-  std::printf("inair_whiteboard, fitted flash at (%.3f, %.3f, %.3f) m: red sphere median %.2f, p90 %.2f\n",
-              fitted.x(), fitted.y(), fitted.z(), errors[errors.size() / 2], errors[errors.size() * 9 / 10]);
+  const auto median = [](const std::vector<double>& e) { return e[e.size() / 2]; };
+  const auto p90 = [](const std::vector<double>& e) { return e[e.size() * 9 / 10]; };
+  std::printf("inair_whiteboard, fitted flash at (%.3f, %.3f, %.3f) m: red sphere median %.2f, p90 %.2f "
+              "(flash given: %.2f, %.2f)\n",
+              fitted.x(), fitted.y(), fitted.z(), median(errors), p90(errors), median(given), p90(given));
   EXPECT_LT((fitted - flash).norm(), 0.03);
-  EXPECT_LE(errors[errors.size() / 2], 3.0);
-  EXPECT_LE(errors[errors.size() * 9 / 10], 3.0);
+  EXPECT_LE(median(errors), 1.25 * median(given) + 0.05);
+  EXPECT_LE(p90(errors), 1.25 * p90(given) + 0.05);
 }
 
 }  // namespace
