@@ -29,6 +29,7 @@
 #include "lib/util/file_lock.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/test_scenes.h"
 #include "tests/support/tree_snapshot.h"
 
 namespace lutex {
@@ -58,12 +59,7 @@ const fs::path& PristineDive() {
     simulate.output = root / "W";
     SimulateWorkspace(simulate);
     fs::remove_all(root / "W" / "ground_truth");
-    FrustumLutGrid grid;
-    grid.nx = 4;
-    grid.ny = 3;
-    grid.nz = 4;
-    grid.image_width = 160;
-    grid.image_height = 120;
+    const FrustumLutGrid grid = testing::LutGrid(4, 3, 4, FrustumLutGrid().z_near, FrustumLutGrid().z_far, 160, 120);
     FrustumLut lut(grid);
     for (int n = 0; n < grid.NumNodes(); ++n) lut.node(n).alpha = Eigen::Vector3d::Ones();
     WriteLut(lut, root / "lut.lut");
