@@ -76,6 +76,12 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
                  "      beside the camera and their beams, in air where the flash is) and shade with it, as if\n"
                  "      given (README, 'The water prior'); recorded in the LUT. --no-fit-rig shades from the\n"
                  "      camera centre instead.");
+  parser.AddString("exposure-gains", &options->exposure_gains,
+                   "Fit one exposure gain per image (strobes whose power varies, auto exposure), divide it out\n"
+                   "      and fit the LUT again: auto (with --correspondences and known colours), fit (with\n"
+                   "      --correspondences, also without known colours: check the gains it reports) or none.\n"
+                   "      The gains go to exposure.json beside the LUT and lutex restore applies them. EXIF\n"
+                   "      exposure (t * ISO / N^2) applies in every case (README, 'Exposure').");
     parser.AddDouble("smoothness", &options->calibration.smoothness_scale,
                    "Smoothness weight relative to observations (paper: 0.01); lutex multiplies it per channel by\n"
                    "      the channel's mean observed intensity over the brightest channel's, so a dark channel is\n"

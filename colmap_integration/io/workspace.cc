@@ -21,6 +21,8 @@ fs::path CalibrationSummaryPath(const fs::path& lut) { return lut.parent_path() 
 
 fs::path WaterPriorPath(const fs::path& lut) { return lut.parent_path() / "water_prior.json"; }
 
+fs::path ExposureRecordPath(const fs::path& lut) { return lut.parent_path() / "exposure.json"; }
+
 fs::path ConfidenceDirOf(const fs::path& restored) {
   fs::path confidence = restored;
   confidence += "_confidence";

@@ -54,6 +54,8 @@ std::filesystem::path CoverageLutPath(const std::filesystem::path& lut);
 std::filesystem::path CalibrationSummaryPath(const std::filesystem::path& lut);
 // The fitted water and rig (lib/calibration/water_prior.h), a rig file --shading-rig reads.
 std::filesystem::path WaterPriorPath(const std::filesystem::path& lut);
+// The exposure the LUT is for and the fitted per-image gains (lib/calibration/exposure_record.h).
+std::filesystem::path ExposureRecordPath(const std::filesystem::path& lut);
 
 // The confidence maps of the restored images in `restored`: the sibling folder RESTORED_confidence (not a
 // subfolder, so tools collecting restored images by name do not pick them up).

@@ -8,6 +8,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@
 #include "lib/calibration/survey_correspondences.h"
 #include "colmap_integration/io/workspace.h"
 #include "lib/calibration/charuco_target.h"
+#include "lib/calibration/exposure_gains.h"
 #include "lib/calibration/chessboard_target.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/reshading.h"
@@ -30,7 +32,9 @@
 #include "lib/lut/lut_slab_images.h"
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/file_streams.h"
+#include "lib/image/exposure_settings.h"
 #include "lib/util/logging.h"
+#include "lib/util/median.h"
 #include "lib/util/parallel_for.h"
 #include "lib/util/progress.h"
 #include "lib/util/option_error.h"
@@ -70,7 +74,7 @@ const Camera& SingleImageSize(const SparseModel& model, const fs::path& where) {
 
 // Known-colour observations from the images of `workspace` (the targets' geometry from `scene`), per image
 // in parallel, gathered in image order so the solve is the same at any thread count.
-std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions& options,
+ObservationSet KnownColorObservations(const CalibrateOptions& options,
                                                           const std::vector<Target>& targets,
                                                           const Workspace& workspace, const SparseModel& model,
                                                           const RaycastScene& scene) {
@@ -90,9 +94,13 @@ std::vector<KnownColorObservation> KnownColorObservations(const CalibrateOptions
     std::lock_guard<std::mutex> lock(per_image_mutex);
     per_image[image.image_id] = std::move(observations);
   });
-  std::vector<KnownColorObservation> observations;
-  for (auto& [id, list] : per_image) observations.insert(observations.end(), list.begin(), list.end());
-  if (observations.empty()) {
+  ObservationSet observations;
+  for (auto& [id, list] : per_image) {
+    for (KnownColorObservation& o : list) o.image = static_cast<int>(observations.images.size());
+    observations.images.push_back(workspace.images_dir / model.images.at(id).name);
+    observations.known_colors.insert(observations.known_colors.end(), list.begin(), list.end());
+  }
+  if (observations.known_colors.empty()) {
     throw std::runtime_error(options.targets.string() + ": no image of " + workspace.images_dir.string() +
                              " shows any target pixel");
   }
@@ -133,8 +141,8 @@ std::function<std::optional<BoardMaps>(const cv::Mat&, const CameraRays&)> Board
 
 // Known colours from the board (chessboard or ChArUco) in every image of options.chessboard_images (sorted
 // by name; images where OpenCV does not find it are skipped with a warning).
-std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions& options, const Camera& camera,
-                                                          CalibrateSummary* summary) {
+ObservationSet ChessboardObservations(const CalibrateOptions& options, const Camera& camera,
+                                      CalibrateSummary* summary) {
   std::string board_name;
   const auto find_board = BoardFinder(options.chessboard, camera, &board_name);
   if (!fs::is_directory(options.chessboard_images)) {
@@ -171,12 +179,14 @@ std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions
     }
     progress.Advance();
   });
-  std::vector<KnownColorObservation> observations;
-  for (const auto& list : per_image) {
-    summary->num_chessboard_images += list.empty() ? 0 : 1;
-    observations.insert(observations.end(), list.begin(), list.end());
+  ObservationSet observations;
+  for (std::size_t i = 0; i < per_image.size(); ++i) {
+    summary->num_chessboard_images += per_image[i].empty() ? 0 : 1;
+    for (KnownColorObservation& o : per_image[i]) o.image = static_cast<int>(observations.images.size());
+    observations.images.push_back(paths[i]);
+    observations.known_colors.insert(observations.known_colors.end(), per_image[i].begin(), per_image[i].end());
   }
-  if (observations.empty()) {
+  if (observations.known_colors.empty()) {
     throw std::runtime_error(options.chessboard_images.string() + ": the " + board_name + " of " +
                              options.chessboard.string() + " was found in none of the images");
   }
@@ -185,8 +195,8 @@ std::vector<KnownColorObservation> ChessboardObservations(const CalibrateOptions
 
 // Pure-water bounds from the images of options.pure_water, screened for surfaces in view (skipped with a
 // warning naming the image and why).
-std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& options, const Camera& camera,
-                                                        CalibrateSummary* summary) {
+ObservationSet PureWaterObservations(const CalibrateOptions& options, const Camera& camera,
+                                     CalibrateSummary* summary) {
   const Workspace workspace = FindWorkspace(options.pure_water);
   const SparseModel model = ReadSparseModel(workspace.sparse_dir);
   std::vector<std::vector<PureWaterObservation>> per_image;
@@ -203,7 +213,7 @@ std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& 
     per_image.push_back(SamplePureWater(observed, options.pure_water_stride));
   }
   const std::vector<std::string> reasons = ScreenPureWaterImages(stats, options.pure_water_screening);
-  std::vector<PureWaterObservation> observations;
+  ObservationSet observations;
   for (std::size_t i = 0; i < per_image.size(); ++i) {
     if (!reasons[i].empty() && options.trust_pure_water) {
       LogWarning() << paths[i].string() << ": used as a pure-water image as --trust-pure-water says, although it seems "
@@ -214,10 +224,12 @@ std::vector<PureWaterObservation> PureWaterObservations(const CalibrateOptions& 
       ++summary->num_pure_water_skipped;
       continue;
     }
-    observations.insert(observations.end(), per_image[i].begin(), per_image[i].end());
+    for (PureWaterObservation& o : per_image[i]) o.image = static_cast<int>(observations.images.size());
+    observations.images.push_back(paths[i]);
+    observations.pure_water.insert(observations.pure_water.end(), per_image[i].begin(), per_image[i].end());
     ++summary->num_pure_water_images;
   }
-  if (observations.empty()) {
+  if (observations.pure_water.empty()) {
     throw std::runtime_error(options.pure_water.string() +
                              ": none of its images looks like pure water (the warnings above say why; "
                              "--trust-pure-water uses them anyway)");
@@ -289,6 +301,9 @@ void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationR
     json["albedo_span"] = {{"lowest", Vector3Json(summary.albedo_span.lowest)},
                            {"highest", Vector3Json(summary.albedo_span.highest)}};
   }
+  json["exposure"] = {{"exif_reference", summary.exposure.exif_reference},
+                      {"exif_images", summary.num_exif_images},
+                      {"fitted_gains", summary.exposure.fitted_gains}};
   json["warnings"] = summary.warnings;
   json["seconds"] = result.summary.seconds;
   for (const CalibrationLevelSummary& level : result.summary.levels) {
@@ -325,16 +340,16 @@ ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedD
       const Mesh targets_mesh = ReadMesh(options.targets_mesh);
       CheckSameImageSize(SingleImageSize(targets_model, targets_workspace.sparse_dir), camera, targets_workspace);
       const RaycastScene targets_scene(targets_mesh);
-      observations.known_colors = KnownColorObservations(options, targets, targets_workspace, targets_model, targets_scene);
+      MergeObservations(KnownColorObservations(options, targets, targets_workspace, targets_model, targets_scene),
+                        &observations);
       summary->num_target_images = targets_model.images.size();
     } else {
-      observations.known_colors = KnownColorObservations(options, targets, workspace, model, dive.scene());
+      MergeObservations(KnownColorObservations(options, targets, workspace, model, dive.scene()), &observations);
       summary->num_target_images = model.images.size();
     }
   }
   if (!options.chessboard.empty()) {
-    const std::vector<KnownColorObservation> board = ChessboardObservations(options, camera, summary);
-    observations.known_colors.insert(observations.known_colors.end(), board.begin(), board.end());
+    MergeObservations(ChessboardObservations(options, camera, summary), &observations);
   }
   if (options.correspondences) {
     SurveyCorrespondenceOptions extraction = options.correspondence_extraction;
@@ -342,15 +357,18 @@ ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedD
     extraction.views.shading = options.calibration.grid.shading;
     extraction.input_encoding = options.input_encoding;
     extraction.num_threads = options.num_threads;
-    const SurveyCorrespondences survey = ExtractSurveyCorrespondences(workspace.images_dir, model, dive.scene(), extraction);
-    observations.correspondences = survey.correspondences;
+    SurveyCorrespondences survey = ExtractSurveyCorrespondences(workspace.images_dir, model, dive.scene(), extraction);
     summary->num_superpixel_samples = survey.num_samples;
-    if (observations.correspondences.empty()) {
+    if (survey.correspondences.empty()) {
       throw std::runtime_error(workspace.images_dir.string() +
                                ": no correspondences found (do the images overlap, and does the mesh cover them?)");
     }
+    ObservationSet part;
+    part.correspondences = std::move(survey.correspondences);
+    part.images = std::move(survey.images);
+    MergeObservations(std::move(part), &observations);
   }
-  if (!options.pure_water.empty()) observations.pure_water = PureWaterObservations(options, camera, summary);
+  if (!options.pure_water.empty()) MergeObservations(PureWaterObservations(options, camera, summary), &observations);
   return observations;
 }
 
@@ -386,6 +404,44 @@ FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, c
   return lut;
 }
 
+// Divides out of every observation its image's EXIF exposure (t * ISO / N^2 over the factors every
+// calibration image has) relative to the median: the LUT is then for an image at the median exposure.
+void DivideOutExifExposure(const CalibrateOptions& options, ObservationSet* observations, CalibrateSummary* summary) {
+  std::vector<ExposureSettings> settings(observations->images.size());
+  ParallelFor(settings.size(), options.num_threads,
+              [&](std::size_t i) { settings[i] = ReadExposureSettings(observations->images[i]); });
+  const ExposureFactors factors = FactorsInEvery(settings);
+  std::size_t with_any = 0;
+  for (const ExposureSettings& s : settings) with_any += s.exposure_time_s > 0.0 || s.iso > 0.0 || s.f_number > 0.0;
+  if (with_any > 0 && !factors.Any()) {
+    LogWarning() << with_any << " of the " << settings.size()
+                 << " calibration images have exposure settings in EXIF, but no setting is in all of them; "
+                    "EXIF exposure is not used";
+  }
+  if (!factors.Any()) return;
+  std::vector<double> products;
+  for (const ExposureSettings& s : settings) products.push_back(ExposureProduct(s, factors));
+  std::vector<double> sorted = products;
+  summary->exposure.exif_factors = factors;
+  summary->exposure.exif_reference = MedianInPlace(sorted);
+  summary->num_exif_images = settings.size();
+  for (double& product : products) product /= summary->exposure.exif_reference;
+  DivideOutExposureGains(products, observations);
+}
+
+// The gains fitted for the workspace's own images, by their names in the model (the record restore reads).
+void RecordFittedGains(const ExposureGains& gains, const ObservationSet& observations, const LoadedDive& dive,
+                       CalibrateSummary* summary) {
+  std::map<fs::path, std::size_t> index_of;
+  for (std::size_t i = 0; i < observations.images.size(); ++i) index_of.emplace(observations.images[i], i);
+  for (const auto& [id, image] : dive.model().images) {
+    const auto found = index_of.find(dive.workspace().images_dir / image.name);
+    if (found != index_of.end() && gains.num_residuals[found->second] > 0) {
+      summary->exposure.fitted_gains[image.name] = gains.gains[found->second];
+    }
+  }
+}
+
 }  // namespace
 
 void CalibrateOptions::Check() const {
@@ -411,6 +467,9 @@ void CalibrateOptions::Check() const {
     throw OptionError(std::string("{reference_water} must be ") + WaterPresetNames());
   }
   if (pure_water_stride < 1) throw OptionError("{pure_water_stride} must be at least 1");
+  if (exposure_gains != "auto" && exposure_gains != "fit" && exposure_gains != "none") {
+    throw OptionError("{exposure_gains} must be auto, fit or none");
+  }
   sampling.Check();
 }
 
@@ -434,7 +493,7 @@ InputsAndOutputs PathsOf(const CalibrateOptions& options, const Workspace& works
   AddCalibrationSources(options, &paths);
   const fs::path lut = options.output.empty() ? workspace.LutPath() : options.output;
   for (const fs::path& output : {lut, CoverageLutPath(lut), CalibrationSummaryPath(lut), WaterPriorPath(lut),
-                                lut.parent_path() / "slabs"}) {
+                                ExposureRecordPath(lut), lut.parent_path() / "slabs"}) {
     paths.AddOutput(output);
   }
   return paths;
@@ -468,6 +527,8 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   CalibrateSummary summary;
   summary.num_images = dive.model().images.size();
   ObservationSet observations = GatherObservations(options, dive, camera, &summary);
+  summary.num_observation_images = observations.images.size();
+  DivideOutExifExposure(options, &observations, &summary);
   // Not when the user said where the light is (a rig file, or --shading-light).
   if (options.fit_rig && calibration.grid.shading.rig.lights.empty() &&
       calibration.grid.shading.light_in_cam.isZero()) {
@@ -488,8 +549,18 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour, "
             << observations.correspondences.size() << " correspondence and " << observations.pure_water.size()
             << " pure-water observations";
-  const CalibrationResult result =
-      Calibrate(observations, ReferenceLut(options, camera, calibration.grid, observations, &summary), calibration);
+  const FrustumLut reference = ReferenceLut(options, camera, calibration.grid, observations, &summary);
+  CalibrationResult result = Calibrate(observations, reference, calibration);
+  const bool fit_gains = !observations.correspondences.empty() &&
+                         (options.exposure_gains == "fit" ||
+                          (options.exposure_gains == "auto" && !observations.known_colors.empty()));
+  if (fit_gains) {
+    const ExposureGains gains = FitExposureGains(observations, result.lut);
+    RecordFittedGains(gains, observations, dive, &summary);
+    DivideOutExposureGains(gains.gains, &observations);
+    LogInfo() << "calibrating again with the exposure gains divided out";
+    result = Calibrate(observations, reference, calibration);
+  }
 
   summary.restored_observations = RestoreObservations(result.lut, observations);
   CheckSolveIsPlausible(summary.restored_observations);
@@ -499,9 +570,37 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   WriteLut(result.coverage, CoverageLutPath(summary.lut));
   WriteLutSlabImages(result.lut, summary.lut.parent_path() / "slabs");
   if (summary.water_prior) WriteWaterPrior(*summary.water_prior, WaterPriorPath(summary.lut));
+  WriteExposureRecord(summary.exposure, ExposureRecordPath(summary.lut));
   WriteCalibrationSummary(summary, result);
   return summary;
 }
+
+namespace {
+
+// One line on exposure: the EXIF factors used, and the range of the fitted gains.
+std::string DescribeExposure(const CalibrateSummary& summary) {
+  std::ostringstream text;
+  const ExposureRecord& exposure = summary.exposure;
+  if (exposure.exif_reference > 0.0) {
+    text << "EXIF " << (exposure.exif_factors.exposure_time ? "t " : "") << (exposure.exif_factors.iso ? "ISO " : "")
+         << (exposure.exif_factors.f_number ? "N " : "") << "of all " << summary.num_exif_images
+         << " images, reference t*ISO/N^2 " << std::setprecision(4) << exposure.exif_reference;
+  } else {
+    text << "no EXIF exposure";
+  }
+  if (!exposure.fitted_gains.empty()) {
+    double lowest = 1e300, highest = 0.0;
+    for (const auto& [name, gain] : exposure.fitted_gains) {
+      lowest = std::min(lowest, gain);
+      highest = std::max(highest, gain);
+    }
+    text << "; gains fitted for " << exposure.fitted_gains.size() << " images, " << std::fixed << std::setprecision(3)
+         << lowest << " to " << highest;
+  }
+  return text.str();
+}
+
+}  // namespace
 
 void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
   const CalibrationSummary& c = summary.calibration;
@@ -520,11 +619,13 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << 100 * summary.restored_observations.implausible_fraction.x() << " "
             << 100 * summary.restored_observations.implausible_fraction.y() << " "
             << 100 * summary.restored_observations.implausible_fraction.z() << " %\n"
-            << (summary.water_prior ? "  water prior: " + DescribeWaterPrior(*summary.water_prior) + "\n" : std::string());
+            << (summary.water_prior ? "  water prior: " + DescribeWaterPrior(*summary.water_prior) + "\n" : std::string())
+            << "  exposure: " << DescribeExposure(summary) << "\n";
   for (const std::string& warning : summary.warnings) out << "  warning: " << warning << "\n";
   out << "  LUT:      " << summary.lut.string() << "\n"
       << "  coverage: " << CoverageLutPath(summary.lut).string() << "\n"
-      << (summary.water_prior ? "  water:    " + WaterPriorPath(summary.lut).string() + "\n" : std::string());
+      << (summary.water_prior ? "  water:    " + WaterPriorPath(summary.lut).string() + "\n" : std::string())
+      << "  exposure: " << ExposureRecordPath(summary.lut).string() << "\n";
 }
 
 }  // namespace lutex

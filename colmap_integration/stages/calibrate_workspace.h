@@ -10,7 +10,9 @@
 //   - optionally pure-water images (beta upper bounds).
 //
 // Output: the LUT (lut_file.h), `coverage.lut` beside it (alpha = per-node data coverage in [0, 1]),
-// `calibration_summary.json` (residuals, iterations, coverage, time) and `slabs/` pictures.
+// `calibration_summary.json` (residuals, iterations, coverage, time), `exposure.json` (the exposure the LUT
+// is for and the gains fitted per image, lib/calibration/exposure_record.h; restore reads it),
+// `water_prior.json` and `slabs/` pictures.
 
 #include <cstddef>
 #include <filesystem>
@@ -24,6 +26,7 @@
 #include "lib/calibration/albedo_span.h"
 #include "lib/calibration/survey_correspondences.h"
 #include "lib/calibration/calibrator.h"
+#include "lib/calibration/exposure_record.h"
 #include "lib/calibration/known_color_sampling.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/solve_plausibility.h"
@@ -64,6 +67,16 @@ struct CalibrateOptions {
   // had been given (recorded in the LUT; the observations are shaded anew). On the Blender boards it brought
   // the worst ColorChecker patch from 19.4 to 5.75 pp (the exact rig: 6.05).
   bool fit_rig = true;
+  // Whether to fit one exposure gain per image under the LUT (lib/calibration/exposure_gains.h: strobes
+  // that vary, auto exposure), divide the gains out and fit the LUT again:
+  //   "auto": when there are correspondences and known colours (on the Blender seafloor with boards the
+  //           gains brought the survey from 2.73 to 2.51 pp; from correspondences alone, whose LUT errors
+  //           the gains then absorb, they drifted to 0.70 - 1.39 where the truth is 1);
+  //   "fit":  whenever there are correspondences;   "none": never.
+  // Never from known colours alone: a board image shows the board at one distance, so its gain and the
+  // LUT's fall-off with depth could not be told apart. EXIF exposure (lib/image/exposure_settings.h)
+  // applies in every case.
+  std::string exposure_gains = "auto";
   KnownColorSamplingOptions sampling;
   int pure_water_stride = 8;
   PureWaterScreeningOptions pure_water_screening;
@@ -102,6 +115,10 @@ struct CalibrateSummary {
   // The water (or in air the light alone) fitted under the LUT (lib/calibration/water_prior.h); its lut is
   // moved out.
   std::optional<WaterPrior> water_prior;
+  // The exposure the LUT is for: EXIF factors and reference, and the gains fitted per workspace image.
+  ExposureRecord exposure;
+  std::size_t num_exif_images = 0;  // calibration images whose EXIF gave the factors used
+  std::size_t num_observation_images = 0;
 };
 
 // What calibrates from besides the workspace and its mesh (targets, boards, pure water, rig), as inputs

@@ -209,6 +209,27 @@ void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs:
            << "<tr><td>water prior: attenuation of backscatter, per m (R / G / B)</td><td>"
            << Vector(prior.at("backscatter_attenuation_per_m"), 3) << "</td></tr>";
     }
+    if (summary.contains("exposure")) {
+      const auto& exposure = summary.at("exposure");
+      const double reference = exposure.value("exif_reference", 0.0);
+      html << "<tr><td>EXIF exposure (t ISO / N<sup>2</sup>)</td><td>";
+      if (reference > 0.0) {
+        html << "reference " << std::setprecision(4) << reference << " over " << exposure.value("exif_images", 0) << " images";
+      } else {
+        html << "not used";
+      }
+      html << "</td></tr>";
+      const auto& gains = exposure.value("fitted_gains", nlohmann::json::object());
+      if (!gains.empty()) {
+        double lowest = 1e300, highest = 0.0;
+        for (const auto& [name, gain] : gains.items()) {
+          lowest = std::min(lowest, gain.get<double>());
+          highest = std::max(highest, gain.get<double>());
+        }
+        html << "<tr><td>exposure gains fitted per image</td><td>" << gains.size() << " images, " << std::setprecision(3)
+             << lowest << " to " << highest << "</td></tr>";
+      }
+    }
     html << "</table>\n";
     for (const auto& warning : summary.value("warnings", nlohmann::json::array())) {
       html << "<p class=\"warning\">" << Escape(warning.get<std::string>()) << "</p>\n";

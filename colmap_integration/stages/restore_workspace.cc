@@ -1,5 +1,6 @@
 #include "colmap_integration/stages/restore_workspace.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <chrono>
 #include <mutex>
@@ -11,6 +12,7 @@
 #include "colmap_integration/stages/output_policy.h"
 #include "colmap_integration/stages/stage_memory.h"
 #include "colmap_integration/stages/workspace_lock.h"
+#include "lib/calibration/exposure_record.h"
 #include "lib/image/image_header.h"
 #include "lib/raycast/images_by_camera.h"
 #include "colmap_integration/io/sparse_model_io.h"
@@ -82,6 +84,7 @@ InputsAndOutputs PathsOf(const RestoreOptions& options, const Workspace& workspa
   paths.AddInput(options.mesh, "the mesh");
   paths.AddInput(options.lut, "the LUT");
   paths.AddInput(CoveragePath(options), "the LUT's coverage");
+  if (fs::exists(ExposureRecordPath(options.lut))) paths.AddInput(ExposureRecordPath(options.lut), "the LUT's exposure record");
   const fs::path output = options.output.empty() ? workspace.RestoredDir() : options.output;
   paths.AddOutput(output);
   paths.AddOutput(ConfidenceDirOf(output));
@@ -111,6 +114,9 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
     coverage = ReadLut(coverage_path);
     CheckSameGrid(lut, options.lut, *coverage, coverage_path);
   }
+  // The exposure the LUT is for, and the fitted gains (exposure_record.h); none for LUTs calibrated before.
+  std::optional<ExposureRecord> exposure;
+  if (fs::exists(ExposureRecordPath(options.lut))) exposure = ReadExposureRecord(ExposureRecordPath(options.lut));
   for (const auto& [id, camera] : model.cameras) {
     if (static_cast<int>(camera.width) != lut.grid().image_width ||
         static_cast<int>(camera.height) != lut.grid().image_height) {
@@ -176,6 +182,9 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
       skip_or_throw(error);  // unreadable pixels behind a sound header (a truncated file)
       return;
     }
+    bool missing_exif = false;
+    const double gain = exposure ? exposure->GainOf(input, image.name, &missing_exif) : 1.0;
+    if (gain != 1.0) observed /= gain;
     RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr, &restored);
     const std::vector<fs::path> outputs = outputs_of(image);
     WriteLinearImage(restored.albedo, outputs[0], output_encoding);
@@ -186,7 +195,14 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
     confidence_sum += total[0] + total[1] + total[2];
     surface_pixels += static_cast<std::size_t>(surfaces);
     ++summary.num_images;
+    summary.num_exposure_adjusted += gain != 1.0 ? 1 : 0;
+    if (missing_exif) summary.missing_exif.push_back(image.name);
   });
+  std::sort(summary.missing_exif.begin(), summary.missing_exif.end());
+  if (!summary.missing_exif.empty()) {
+    LogWarning() << summary.missing_exif.size() << " image(s) lack the EXIF exposure settings the LUT was calibrated "
+                 << "with (first: " << summary.missing_exif.front() << "); they are restored as if at its reference exposure";
+  }
   summary.mean_confidence = surface_pixels ? confidence_sum / (3.0 * static_cast<double>(surface_pixels)) : 0.0;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
@@ -198,6 +214,10 @@ void PrintRestoreSummary(std::ostream& out, const RestoreSummary& summary) {
             << "  restored images:  " << summary.output.string() << "\n"
             << "  confidence maps:  " << summary.confidence_output.string() << "\n"
             << "  LUT coverage:     " << (summary.coverage.empty() ? std::string("not used") : summary.coverage.string())
+            << "\n"
+            << "  exposure:         " << summary.num_exposure_adjusted << " image(s) scaled by their EXIF or fitted gain"
+            << (summary.missing_exif.empty() ? std::string()
+                                             : ", " + std::to_string(summary.missing_exif.size()) + " without EXIF")
             << "\n";
   if (!summary.bad_images.empty()) {
     out << "  skipped as unreadable (--skip-bad-images): " << summary.bad_images.size() << " image(s)\n";

@@ -4,6 +4,10 @@
 // plus a per-channel confidence map (lib/restoration/restorer.h). Images are streamed: each is read,
 // ray-cast, restored and written by one thread, so memory does not grow with the number of images.
 //
+// Each image is first divided by its exposure gain: its EXIF exposure relative to the LUT's and its gain
+// fitted in calibration, from `exposure.json` beside the LUT (lib/calibration/exposure_record.h) when there
+// is one.
+//
 // Output:
 //   OUTPUT/NAME                the restored image, in `output_encoding` (.png when 16-bit or float
 //                              output would not fit the input's extension, e.g. .jpg); OUTPUT defaults
@@ -63,6 +67,10 @@ struct RestoreSummary {
   std::size_t num_skipped = 0;  // already done (skip_done)
   std::vector<std::string> bad_images;  // "path: what is wrong", skipped (skip_bad_images)
   double mean_confidence = 0.0;  // over pixels with a surface, all channels, of the images restored now
+  // Images divided by a gain other than 1 (the LUT's exposure.json: EXIF and fitted gains), and those
+  // without the EXIF settings the LUT was calibrated with.
+  std::size_t num_exposure_adjusted = 0;
+  std::vector<std::string> missing_exif;
   double seconds = 0.0;
 };
 

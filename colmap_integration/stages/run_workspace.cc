@@ -181,6 +181,7 @@ class DiveRun {
       record.AddOutput(summary_.lut);
       record.AddOutput(CoverageLutPath(summary_.lut));
       record.AddOutput(CalibrationSummaryPath(summary_.lut));
+      record.AddOutput(ExposureRecordPath(summary_.lut));
       summary_.stages.push_back(runner_.Run(record, {summary_.lut.parent_path()}, [&](bool) {
         return SummaryText(CalibrateWorkspace(calibrate, Dive()), PrintCalibrateSummary);
       }));
@@ -207,6 +208,7 @@ class DiveRun {
     record.AddFileContents(summary_.lut);
     const fs::path coverage = CoverageLutPath(summary_.lut);
     if (!restore.ignore_coverage && fs::exists(coverage)) record.AddFileContents(coverage);
+    if (fs::exists(ExposureRecordPath(summary_.lut))) record.AddFileContents(ExposureRecordPath(summary_.lut));
     record.AddOutput(summary_.restored);
     record.AddOutput(summary_.confidence);
     summary_.stages.push_back(runner_.Run(record, {summary_.restored, summary_.confidence}, [&](bool resume) {

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "colmap_integration/io/colmap_array.h"
 #include "colmap_integration/stages/output_policy.h"
 #include "lib/model/scene_description.h"
@@ -13,6 +15,7 @@
 #include "lib/model/sparse_points.h"
 #include "lib/raycast/raycast_scene.h"
 #include "lib/model/synthetic_seafloor.h"
+#include "lib/util/file_streams.h"
 #include "lib/util/logging.h"
 #include "lib/util/progress.h"
 #include "lib/util/option_error.h"
@@ -100,6 +103,11 @@ SimulateSummary SimulateWorkspace(const SimulateOptions& options) {
     true_lut.node(n).beta *= scene.sensor.exposure;
   }
   WriteLut(true_lut, root / "ground_truth" / "true.lut");
+  // Each image's exposure relative to the true LUT's (sensor.exposure_variation).
+  nlohmann::json factors = nlohmann::json::object();
+  for (std::size_t i = 0; i < scene.poses.size(); ++i) factors[scene.poses[i].name] = ExposureFactor(scene.sensor, i);
+  WriteFileAtomically(root / "ground_truth" / "exposure_factors.json", std::ios::out,
+                      [&factors](std::ostream& stream) { stream << factors.dump(2) << "\n"; });
   WriteLutSlabImages(true_lut, root / "ground_truth" / "true_lut_slabs");
 
   SimulateSummary summary;

@@ -11,6 +11,8 @@
 //   W/ground_truth/true.lut          the LUT a perfect calibration of these images finds (lut_file.h),
 //                                    in image units (the sensor's exposure included)
 //   W/ground_truth/true_lut_slabs/   its slabs as pictures
+//   W/ground_truth/exposure_factors.json  {NAME: each image's exposure relative to the true LUT's} (1
+//                                    without the sensor's exposure_variation)
 
 #include <cstddef>
 #include <filesystem>

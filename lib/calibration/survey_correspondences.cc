@@ -73,6 +73,13 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
                                                    const RaycastScene& scene,
                                                    const SurveyCorrespondenceOptions& options) {
   options.Check();
+  // Each view's `image` indexes image_paths, the model's images in id order.
+  std::vector<std::filesystem::path> image_paths;
+  std::map<std::uint32_t, int> image_index;
+  for (const auto& [id, image] : model.images) {
+    image_index[id] = static_cast<int>(image_paths.size());
+    image_paths.push_back(images_dir / image.name);
+  }
   std::map<std::uint32_t, ImageSamples> samples;
   std::mutex mutex;
   ForEachImageWithMaps(model, scene, options.num_threads, "superpixels",
@@ -81,7 +88,8 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
     ImageSamples result;
     result.samples = SampleSuperpixels(observed, maps, rays, options.superpixels);
     const Rigid3d world_from_cam = image.cam_from_world.Inverse();
-    for (const SurfaceSample& sample : result.samples) {
+    for (SurfaceSample& sample : result.samples) {
+      sample.view.image = image_index.at(image.image_id);
       result.points_in_world.push_back(world_from_cam * sample.view.point_in_cam);
       result.footprints_in_world.push_back(sample.footprint_radius * sample.view.point_in_cam.z() /
                                            rays.camera().FocalLengthX());
@@ -114,6 +122,7 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
       const ImageSamples& a_samples = samples.at(a);
       for (std::size_t s = 0; s < a_samples.samples.size(); ++s) {
         if (auto view = ViewInOtherImage(a_samples.points_in_world[s], a_samples.footprints_in_world[s], other, options.views)) {
+          view->image = image_index.at(image.image_id);
           found.emplace_back(a, Match{s, rank, *view});
         }
       }
@@ -123,6 +132,7 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
   });
 
   SurveyCorrespondences result;
+  result.images = std::move(image_paths);
   result.num_images = model.images.size();
   for (auto& [a, list] : matches) {
     // Deterministic: by sample, then candidate rank; the first `partners` per sample.

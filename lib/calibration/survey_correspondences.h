@@ -39,6 +39,8 @@ struct SurveyCorrespondenceOptions {
 
 struct SurveyCorrespondences {
   std::vector<CorrespondenceObservation> correspondences;
+  // The model's images (images_dir / name) in id order; a view's `image` indexes this list.
+  std::vector<std::filesystem::path> images;
   std::size_t num_images = 0;
   std::size_t num_samples = 0;
 };

@@ -155,8 +155,9 @@ void ParseWater(const json& root, SceneDescription* scene) {
 void ParseSensor(const json& root, SceneDescription* scene) {
   if (root.contains("sensor")) {
     const json& sensor = root["sensor"];
-    ExpectKeys(sensor, "sensor", {"exposure", "blur_px", "shot_noise", "read_noise", "seed"});
+    ExpectKeys(sensor, "sensor", {"exposure", "exposure_variation", "blur_px", "shot_noise", "read_noise", "seed"});
     scene->sensor.exposure = NumberField(sensor, "exposure", "sensor", 1.0);
+    scene->sensor.exposure_variation = NumberField(sensor, "exposure_variation", "sensor", 0.0);
     scene->sensor.blur_sigma_px = NumberField(sensor, "blur_px", "sensor", 0.0);
     scene->sensor.shot_noise = NumberField(sensor, "shot_noise", "sensor", 0.0);
     scene->sensor.read_noise = NumberField(sensor, "read_noise", "sensor", 0.0);

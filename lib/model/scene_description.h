@@ -16,7 +16,7 @@
 //               "profile": "isotropic" | "cosine_power" (exponent) | "gaussian" (sigma_deg) |
 //                          "cycles_spot" (spot_size_deg, spot_blend)}],
 //   "water": "air" | {"absorption": [r, g, b], "scattering": [r, g, b], "g": 0.9},
-//   "sensor": {"exposure": 1, "blur_px": 0, "shot_noise": 0, "read_noise": 0, "seed": 1},
+//   "sensor": {"exposure": 1, "exposure_variation": 0, "blur_px": 0, "shot_noise": 0, "read_noise": 0, "seed": 1},
 //   "output": {"encoding": "srgb8" | "linear16", "sparse_format": "text" | "binary",
 //              "sparse_points": 0, "sparse_point_noise": 0}  (3-D points per image, as SfM gives them:
 //              lib/model/sparse_points.h; their position noise in metres),

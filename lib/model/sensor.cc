@@ -10,15 +10,26 @@ namespace lutex {
 
 void SensorOptions::Check() const {
   if (!(exposure > 0.0)) throw std::invalid_argument("sensor exposure must be positive");
+  if (!(exposure_variation >= 0.0 && exposure_variation < 1.0)) {
+    throw std::invalid_argument("sensor exposure_variation must be in [0, 1)");
+  }
   if (blur_sigma_px < 0.0 || shot_noise < 0.0 || read_noise < 0.0) {
     throw std::invalid_argument("sensor blur and noise must not be negative");
   }
 }
 
+double ExposureFactor(const SensorOptions& options, std::uint64_t image_index) {
+  if (options.exposure_variation == 0.0) return 1.0;
+  // A generator of its own, so the noise of a scene without variation stays what it was.
+  std::mt19937_64 random(options.seed * 0xD1B54A32D192ED03ull + image_index);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  return 1.0 + options.exposure_variation * uniform(random);
+}
+
 cv::Mat ApplySensor(const cv::Mat& radiance, const SensorOptions& options, std::uint64_t image_index) {
   options.Check();
   cv::Mat value;
-  radiance.convertTo(value, CV_32FC3, options.exposure);
+  radiance.convertTo(value, CV_32FC3, options.exposure * ExposureFactor(options, image_index));
   if (options.blur_sigma_px > 0.0) cv::GaussianBlur(value, value, cv::Size(0, 0), options.blur_sigma_px);
   if (options.shot_noise > 0.0 || options.read_noise > 0.0) {
     std::mt19937_64 random(options.seed * 0x9E3779B97F4A7C15ull + image_index);

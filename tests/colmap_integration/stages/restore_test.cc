@@ -6,13 +6,16 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_integration/stages/restore_workspace.h"
 #include "colmap_integration/stages/simulate_workspace.h"
 #include "colmap_integration/io/sparse_model_io.h"
+#include "lib/calibration/exposure_record.h"
 #include "lib/image/image_io.h"
 #include "lib/lut/lut_file.h"
+#include "tests/support/exif_jpeg.h"
 #include "tests/support/temp_dir.h"
 
 namespace lutex {
@@ -33,8 +36,16 @@ const char* kScene = R"({
   "lut": {"nx": 20, "ny": 15, "nz": 10, "z_near": 0.8, "z_far": 3.0}
 })";
 
-fs::path Simulated(const fs::path& folder) {
-  std::ofstream(folder / "scene.json") << kScene;
+// The same with every frame's exposure varied by up to 10 % (a strobe's power).
+std::string SceneWithExposureVariation() {
+  std::string scene = kScene;
+  const std::string key = R"("sensor": {"exposure": 3.0)";
+  scene.replace(scene.find(key), key.size(), key + R"(, "exposure_variation": 0.1)");
+  return scene;
+}
+
+fs::path Simulated(const fs::path& folder, const std::string& scene = kScene) {
+  std::ofstream(folder / "scene.json") << scene;
   SimulateOptions options;
   options.scene = folder / "scene.json";
   options.output = folder / "W";
@@ -53,18 +64,16 @@ RestoreOptions OptionsFor(const fs::path& workspace) {
   return options;
 }
 
-// Median error over confident pixels below 1 % of full scale (measured 0.06 %).
-TEST(Restore, TrueLutRestoresTheSimulatedWorkspace) {
-  testing::TempDir dir;
-  const fs::path workspace = Simulated(dir.path());
-  const RestoreSummary summary = RestoreWorkspace(OptionsFor(workspace));
-  ASSERT_EQ(summary.num_images, 8u);
+// The median |restored - true albedo| over the pixel-channels restoration is confident of (most of them).
+double MedianConfidentError(const fs::path& workspace, const RestoreSummary& summary) {
   std::vector<double> errors;
   for (const auto& [id, image] : ReadSparseModel(workspace / "sparse" / "0").images) {
-    const cv::Mat restored = ReadLinearImage(summary.output / image.name, ImageEncoding::kLinear16);
-    const cv::Mat truth = ReadLinearImage(workspace / "ground_truth" / "albedo" / image.name, ImageEncoding::kLinear16);
-    const cv::Mat confidence = cv::imread((summary.confidence_output / image.name).string());
-    ASSERT_FALSE(confidence.empty());
+    const fs::path name = fs::path(image.name).replace_extension(".png");
+    const cv::Mat restored = ReadLinearImage(summary.output / name, ImageEncoding::kLinear16);
+    const cv::Mat truth = ReadLinearImage(workspace / "ground_truth" / "albedo" / name, ImageEncoding::kLinear16);
+    const cv::Mat confidence = cv::imread((summary.confidence_output / name).string());
+    EXPECT_FALSE(confidence.empty()) << image.name;
+    if (confidence.empty()) return 1.0;
     for (int row = 0; row < restored.rows; ++row) {
       for (int col = 0; col < restored.cols; ++col) {
         for (int c = 0; c < 3; ++c) {
@@ -74,10 +83,87 @@ TEST(Restore, TrueLutRestoresTheSimulatedWorkspace) {
       }
     }
   }
-  ASSERT_GT(errors.size(), 8u * 200 * 150);  // most pixel-channels are confident
+  EXPECT_GT(errors.size(), 8u * 200 * 150);  // most pixel-channels are confident
   std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
-  std::printf("restore with the true LUT: median error %.4f over %zu pixel-channels\n", errors[errors.size() / 2], errors.size());
-  EXPECT_LT(errors[errors.size() / 2], 0.01);
+  return errors[errors.size() / 2];
+}
+
+// Median error over confident pixels below 1 % of full scale (measured 0.06 %).
+TEST(Restore, TrueLutRestoresTheSimulatedWorkspace) {
+  testing::TempDir dir;
+  const fs::path workspace = Simulated(dir.path());
+  const RestoreSummary summary = RestoreWorkspace(OptionsFor(workspace));
+  ASSERT_EQ(summary.num_images, 8u);
+  const double median = MedianConfidentError(workspace, summary);
+  std::printf("restore with the true LUT: median error %.4f\n", median);
+  EXPECT_LT(median, 0.01);
+}
+
+// Frames whose exposure varies by up to 10 %: the true LUT alone restores them several times worse; with
+// exposure.json beside it holding each frame's gain (as calibration writes the fitted ones), as well as
+// frames of one exposure (measured 0.0006 with, 0.038 without).
+TEST(Restore, TheExposureRecordBesideTheLutDividesEachImageByItsGain) {
+  testing::TempDir dir;
+  const fs::path workspace = Simulated(dir.path(), SceneWithExposureVariation());
+  RestoreOptions options = OptionsFor(workspace);
+  options.output = dir.path() / "without";
+  const double without = MedianConfidentError(workspace, RestoreWorkspace(options));
+
+  ExposureRecord record;
+  const nlohmann::json factors = nlohmann::json::parse(std::ifstream(workspace / "ground_truth" / "exposure_factors.json"));
+  for (const auto& [name, factor] : factors.items()) record.fitted_gains[name] = factor.get<double>();
+  fs::create_directories(dir.path() / "calibration");
+  fs::copy_file(options.lut, dir.path() / "calibration" / "lut.lut");
+  WriteExposureRecord(record, dir.path() / "calibration" / "exposure.json");
+  options.lut = dir.path() / "calibration" / "lut.lut";
+  options.output = dir.path() / "with";
+  const RestoreSummary summary = RestoreWorkspace(options);
+  EXPECT_EQ(summary.num_exposure_adjusted, 8u);
+  const double with = MedianConfidentError(workspace, summary);
+  std::printf("varying exposure: median error %.4f with the gains, %.4f without\n", with, without);
+  EXPECT_LT(with, 0.01);
+  EXPECT_GT(without, 4 * with);
+}
+
+// The same frames as a camera's JPEGs whose EXIF says how each was exposed (ISO in proportion to its
+// exposure): a record with an EXIF reference and no fitted gains restores them by EXIF alone; an image
+// without the tags is restored at the reference and named in the summary (measured: median error 0.011
+// with the record, 0.040 without; 8-bit JPEG with chroma subsampling).
+TEST(Restore, ExifExposureRelativeToTheLutsReferenceIsDividedOut) {
+  testing::TempDir dir;
+  const fs::path workspace = Simulated(dir.path(), SceneWithExposureVariation());
+  const nlohmann::json factors = nlohmann::json::parse(std::ifstream(workspace / "ground_truth" / "exposure_factors.json"));
+  SparseModel model = ReadSparseModel(workspace / "sparse" / "0");
+  for (auto& [id, image] : model.images) {
+    const cv::Mat linear = ReadLinearImage(workspace / "images" / image.name, ImageEncoding::kLinear16);
+    const fs::path jpeg = fs::path(image.name).replace_extension(".jpg");
+    WriteLinearImage(linear, dir.path() / "srgb.png", ImageEncoding::kSrgb8);
+    const double iso = id == 1 ? 0.0 : std::round(1000 * factors[image.name].get<double>());
+    testing::WriteExifJpeg(cv::imread((dir.path() / "srgb.png").string()), workspace / "images" / jpeg, 0.004, iso, 4.0);
+    image.name = jpeg.string();
+  }
+  WriteSparseModel(model, workspace / "sparse" / "0", SparseFormat::kText);
+  ExposureRecord record;
+  record.exif_factors = {true, true, true};
+  record.exif_reference = 0.004 * 1000 / 16;
+  fs::create_directories(dir.path() / "calibration");
+  fs::copy_file(workspace / "ground_truth" / "true.lut", dir.path() / "calibration" / "lut.lut");
+  WriteExposureRecord(record, dir.path() / "calibration" / "exposure.json");
+  RestoreOptions options = OptionsFor(workspace);
+  options.input_encoding = ImageEncoding::kSrgb8;
+  options.output_encoding = "linear16";
+  options.restoration.read_noise = 0.002;
+  options.lut = dir.path() / "calibration" / "lut.lut";
+  const RestoreSummary summary = RestoreWorkspace(options);
+  EXPECT_EQ(summary.num_exposure_adjusted, 7u);
+  ASSERT_EQ(summary.missing_exif.size(), 1u);
+  EXPECT_EQ(summary.missing_exif[0], model.images.at(1).name);
+  const double with = MedianConfidentError(workspace, summary);
+  fs::remove(dir.path() / "calibration" / "exposure.json");
+  options.output = dir.path() / "without";
+  const double without = MedianConfidentError(workspace, RestoreWorkspace(options));
+  std::printf("EXIF exposure (8-bit JPEG): median error %.4f with the record, %.4f without\n", with, without);
+  EXPECT_LT(with, 0.5 * without);
 }
 
 // coverage.lut beside the LUT is picked up: where it says no data constrained the nodes (the left half of
