@@ -406,26 +406,51 @@ FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, c
 
 // Divides out of every observation its image's EXIF exposure (t * ISO / N^2 over the factors every
 // calibration image has) relative to the median: the LUT is then for an image at the median exposure.
+// Only the images that gave observations count (a board image where no board was found does not).
 void DivideOutExifExposure(const CalibrateOptions& options, ObservationSet* observations, CalibrateSummary* summary) {
+  std::vector<bool> observed(observations->images.size(), false);
+  const auto mark = [&](int image) { if (image >= 0) observed[static_cast<std::size_t>(image)] = true; };
+  for (const KnownColorObservation& o : observations->known_colors) mark(o.image);
+  for (const PureWaterObservation& o : observations->pure_water) mark(o.image);
+  for (const CorrespondenceObservation& o : observations->correspondences) {
+    mark(o.first.image);
+    mark(o.second.image);
+  }
   std::vector<ExposureSettings> settings(observations->images.size());
-  ParallelFor(settings.size(), options.num_threads,
-              [&](std::size_t i) { settings[i] = ReadExposureSettings(observations->images[i]); });
-  const ExposureFactors factors = FactorsInEvery(settings);
+  ParallelFor(settings.size(), options.num_threads, [&](std::size_t i) {
+    if (observed[i]) settings[i] = ReadExposureSettings(observations->images[i]);
+  });
+  std::vector<ExposureSettings> used;
   std::size_t with_any = 0;
-  for (const ExposureSettings& s : settings) with_any += s.exposure_time_s > 0.0 || s.iso > 0.0 || s.f_number > 0.0;
+  const fs::path* first_without = nullptr;
+  for (std::size_t i = 0; i < settings.size(); ++i) {
+    if (!observed[i]) continue;
+    used.push_back(settings[i]);
+    const bool any = settings[i].exposure_time_s > 0.0 || settings[i].iso > 0.0 || settings[i].f_number > 0.0;
+    with_any += any ? 1 : 0;
+    if (!any && first_without == nullptr) first_without = &observations->images[i];
+  }
+  const ExposureFactors factors = FactorsInEvery(used);
   if (with_any > 0 && !factors.Any()) {
-    LogWarning() << with_any << " of the " << settings.size()
-                 << " calibration images have exposure settings in EXIF, but no setting is in all of them; "
-                    "EXIF exposure is not used";
+    LogWarning() << with_any << " of the " << used.size()
+                 << " calibration images have exposure settings in EXIF, but no setting is in all of them"
+                 << (first_without ? " (" + first_without->string() + " has none)" : std::string())
+                 << "; EXIF exposure is not used";
   }
   if (!factors.Any()) return;
   std::vector<double> products;
   for (const ExposureSettings& s : settings) products.push_back(ExposureProduct(s, factors));
-  std::vector<double> sorted = products;
+  std::vector<double> sorted;
+  for (std::size_t i = 0; i < products.size(); ++i) {
+    if (observed[i]) sorted.push_back(products[i]);
+  }
   summary->exposure.exif_factors = factors;
   summary->exposure.exif_reference = MedianInPlace(sorted);
-  summary->num_exif_images = settings.size();
-  for (double& product : products) product /= summary->exposure.exif_reference;
+  summary->num_exif_images = used.size();
+  // Images without observations are left at 1 (their product may be 0).
+  for (std::size_t i = 0; i < products.size(); ++i) {
+    products[i] = observed[i] ? products[i] / summary->exposure.exif_reference : 1.0;
+  }
   DivideOutExposureGains(products, observations);
 }
 
@@ -434,6 +459,7 @@ void RecordFittedGains(const ExposureGains& gains, const ObservationSet& observa
                        CalibrateSummary* summary) {
   std::map<fs::path, std::size_t> index_of;
   for (std::size_t i = 0; i < observations.images.size(); ++i) index_of.emplace(observations.images[i], i);
+  summary->exposure.fitted_images = fs::absolute(dive.workspace().images_dir).lexically_normal();
   for (const auto& [id, image] : dive.model().images) {
     const auto found = index_of.find(dive.workspace().images_dir / image.name);
     if (found != index_of.end() && gains.num_residuals[found->second] > 0) {

@@ -1,6 +1,7 @@
 #include "colmap_integration/stages/restore_workspace.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <chrono>
 #include <mutex>
@@ -116,7 +117,13 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
   }
   // The exposure the LUT is for, and the fitted gains (exposure_record.h); none for LUTs calibrated before.
   std::optional<ExposureRecord> exposure;
-  if (fs::exists(ExposureRecordPath(options.lut))) exposure = ReadExposureRecord(ExposureRecordPath(options.lut));
+  if (fs::exists(ExposureRecordPath(options.lut))) {
+    exposure = ReadExposureRecord(ExposureRecordPath(options.lut));
+    if (!exposure->fitted_gains.empty() && !exposure->HasGainsFor(workspace.images_dir)) {
+      LogWarning() << ExposureRecordPath(options.lut).string() << ": its fitted gains are for the images of "
+                   << exposure->fitted_images.string() << ", not these; only EXIF exposure is applied";
+    }
+  }
   for (const auto& [id, camera] : model.cameras) {
     if (static_cast<int>(camera.width) != lut.grid().image_width ||
         static_cast<int>(camera.height) != lut.grid().image_height) {
@@ -183,9 +190,16 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
       return;
     }
     bool missing_exif = false;
-    const double gain = exposure ? exposure->GainOf(input, image.name, &missing_exif) : 1.0;
-    if (gain != 1.0) observed /= gain;
-    RestoreImage(observed, maps, rays, lut, options.restoration, coverage ? &*coverage : nullptr, &restored);
+    const double gain = exposure ? exposure->GainOf(workspace.images_dir, image.name, &missing_exif) : 1.0;
+    // Divided by its gain, the image's clipping level and noise are divided too.
+    RestorationOptions restoration = options.restoration;
+    if (gain != 1.0) {
+      observed /= gain;
+      restoration.saturation_level /= gain;
+      restoration.shot_noise /= std::sqrt(gain);
+      restoration.read_noise /= gain;
+    }
+    RestoreImage(observed, maps, rays, lut, restoration, coverage ? &*coverage : nullptr, &restored);
     const std::vector<fs::path> outputs = outputs_of(image);
     WriteLinearImage(restored.albedo, outputs[0], output_encoding);
     WriteConfidenceMap(restored.confidence, outputs[1]);

@@ -7,18 +7,27 @@
 
 namespace lutex {
 
-double ExposureRecord::GainOf(const std::filesystem::path& path, const std::string& name, bool* missing_exif) const {
+bool ExposureRecord::HasGainsFor(const std::filesystem::path& images_dir) const {
+  if (fitted_gains.empty() || fitted_images.empty()) return false;
+  std::error_code error;
+  return std::filesystem::equivalent(images_dir, fitted_images, error);
+}
+
+double ExposureRecord::GainOf(const std::filesystem::path& images_dir, const std::string& name,
+                              bool* missing_exif) const {
   double gain = 1.0;
   if (exif_reference > 0.0) {
-    const double product = ExposureProduct(ReadExposureSettings(path), exif_factors);
+    const double product = ExposureProduct(ReadExposureSettings(images_dir / name), exif_factors);
     if (product > 0.0) {
       gain = product / exif_reference;
     } else if (missing_exif != nullptr) {
       *missing_exif = true;
     }
   }
-  const auto fitted = fitted_gains.find(name);
-  if (fitted != fitted_gains.end()) gain *= fitted->second;
+  if (HasGainsFor(images_dir)) {
+    const auto fitted = fitted_gains.find(name);
+    if (fitted != fitted_gains.end()) gain *= fitted->second;
+  }
   return gain;
 }
 
@@ -33,13 +42,15 @@ void WriteExposureRecord(const ExposureRecord& record, const std::filesystem::pa
                   {"reference", record.exif_reference > 0.0 ? nlohmann::json(record.exif_reference) : nlohmann::json()}};
   json["fitted_gains"] = nlohmann::json::object();
   for (const auto& [name, gain] : record.fitted_gains) json["fitted_gains"][name] = gain;
+  json["fitted_images"] = record.fitted_images.string();
   WriteFileAtomically(path, std::ios::out, [&json](std::ostream& stream) { stream << json.dump(2) << "\n"; });
 }
 
 ExposureRecord ReadExposureRecord(const std::filesystem::path& path) {
   return ReadJsonFile(path, "exposure record", [](const nlohmann::json& root, const std::filesystem::path&) {
-    ExpectKeys(root, "", {"comment", "exif", "fitted_gains"});
+    ExpectKeys(root, "", {"comment", "exif", "fitted_gains", "fitted_images"});
     ExposureRecord record;
+    record.fitted_images = TextField(root, "fitted_images", "", "");
     if (root.contains("exif")) {
       const nlohmann::json& exif = root["exif"];
       ExpectKeys(exif, "exif", {"exposure_time", "iso", "f_number", "reference"});

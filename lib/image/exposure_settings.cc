@@ -1,7 +1,7 @@
 #include "lib/image/exposure_settings.h"
 
 #include <cstdlib>
-#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -24,25 +24,32 @@ double FirstNumber(const char* text) {
   return number > 0.0 ? number : 0.0;
 }
 
+// The tag in the default metadata domain (the JPEG driver's) or in "EXIF" (where other drivers put it).
+double ExifNumber(GDALDatasetH dataset, const char* key) {
+  const double value = FirstNumber(GDALGetMetadataItem(dataset, key, nullptr));
+  return value > 0.0 ? value : FirstNumber(GDALGetMetadataItem(dataset, key, "EXIF"));
+}
+
 }  // namespace
 
 ExposureSettings ReadExposureSettings(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw std::runtime_error(path.string() + ": no such image");
-  GDALAllRegister();
+  static std::once_flag registered;
+  std::call_once(registered, [] { GDALAllRegister(); });
+  // Quiet, and only the file itself (no .aux.xml beside it is read or written), from opening to closing;
+  // both settings are per thread.
   CPLPushErrorHandler(CPLQuietErrorHandler);
-  // Read only the file itself: no .aux.xml beside it is read or written.
   CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", "NO");
   const char* const drivers[] = {"JPEG", "GTiff", nullptr};
-  std::unique_ptr<void, void (*)(void*)> dataset(
-      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers, nullptr, nullptr),
-      [](void* handle) { if (handle != nullptr) GDALClose(handle); });
+  ExposureSettings settings;
+  if (GDALDatasetH dataset = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers, nullptr, nullptr)) {
+    settings.exposure_time_s = ExifNumber(dataset, "EXIF_ExposureTime");
+    settings.iso = ExifNumber(dataset, "EXIF_ISOSpeedRatings");
+    settings.f_number = ExifNumber(dataset, "EXIF_FNumber");
+    GDALClose(dataset);
+  }
   CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", nullptr);
   CPLPopErrorHandler();
-  ExposureSettings settings;
-  if (dataset == nullptr) return settings;
-  settings.exposure_time_s = FirstNumber(GDALGetMetadataItem(dataset.get(), "EXIF_ExposureTime", nullptr));
-  settings.iso = FirstNumber(GDALGetMetadataItem(dataset.get(), "EXIF_ISOSpeedRatings", nullptr));
-  settings.f_number = FirstNumber(GDALGetMetadataItem(dataset.get(), "EXIF_FNumber", nullptr));
   return settings;
 }
 

@@ -112,6 +112,7 @@ TEST(Restore, TheExposureRecordBesideTheLutDividesEachImageByItsGain) {
   ExposureRecord record;
   const nlohmann::json factors = nlohmann::json::parse(std::ifstream(workspace / "ground_truth" / "exposure_factors.json"));
   for (const auto& [name, factor] : factors.items()) record.fitted_gains[name] = factor.get<double>();
+  record.fitted_images = workspace / "images";
   fs::create_directories(dir.path() / "calibration");
   fs::copy_file(options.lut, dir.path() / "calibration" / "lut.lut");
   WriteExposureRecord(record, dir.path() / "calibration" / "exposure.json");
@@ -123,6 +124,12 @@ TEST(Restore, TheExposureRecordBesideTheLutDividesEachImageByItsGain) {
   std::printf("varying exposure: median error %.4f with the gains, %.4f without\n", with, without);
   EXPECT_LT(with, 0.01);
   EXPECT_GT(without, 4 * with);
+
+  // Gains fitted for another dive's images of the same names are not applied.
+  record.fitted_images = dir.path();
+  WriteExposureRecord(record, dir.path() / "calibration" / "exposure.json");
+  options.output = dir.path() / "other_dive";
+  EXPECT_EQ(RestoreWorkspace(options).num_exposure_adjusted, 0u);
 }
 
 // The same frames as a camera's JPEGs whose EXIF says how each was exposed (ISO in proportion to its

@@ -139,6 +139,21 @@ TEST(ExposureGains, SeparateGroupsEachHaveMeanOneAndUnseenImagesKeepOne) {
   EXPECT_EQ(fitted.num_residuals[6], 0u);
 }
 
+// An image that shows only known colours (a board at one distance) keeps gain 1: its gain would trade
+// with the LUT's fall-off there. Images with correspondences are still fitted, absolutely.
+TEST(ExposureGains, AnImageWithKnownColoursAloneKeepsGainOne) {
+  Dive dive = SimulatedDive(6, 6, 0.0, 6);
+  std::vector<CorrespondenceObservation> kept;
+  for (const CorrespondenceObservation& o : dive.observations.correspondences) {
+    if (o.first.image != 5 && o.second.image != 5) kept.push_back(o);
+  }
+  dive.observations.correspondences = kept;
+  const ExposureGains fitted = FitExposureGains(dive.observations, KnownLut());
+  EXPECT_EQ(fitted.gains[5], 1.0);
+  EXPECT_EQ(fitted.num_residuals[5], 0u);
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_NEAR(fitted.gains[i], dive.true_gains[i], 0.005) << "image " << i;
+}
+
 TEST(ExposureGains, DividingThemOutRestoresTheObservationsOfGainOne) {
   Dive dive = SimulatedDive(4, 1, 0.0, 5);
   const Eigen::Vector3d before = dive.observations.correspondences.front().first.intensity;

@@ -17,6 +17,7 @@ TEST(ExposureRecord, WrittenAndReadBackTheSame) {
   record.exif_factors = {true, false, true};
   record.exif_reference = 0.0005;
   record.fitted_gains = {{"dive/a.jpg", 0.93}, {"b.jpg", 1.07}};
+  record.fitted_images = "/surveys/dive 7/images";
   WriteExposureRecord(record, dir.path() / "exposure.json");
   const ExposureRecord back = ReadExposureRecord(dir.path() / "exposure.json");
   EXPECT_TRUE(back.exif_factors.exposure_time);
@@ -24,13 +25,19 @@ TEST(ExposureRecord, WrittenAndReadBackTheSame) {
   EXPECT_TRUE(back.exif_factors.f_number);
   EXPECT_EQ(back.exif_reference, 0.0005);
   EXPECT_EQ(back.fitted_gains, record.fitted_gains);
-  // Without EXIF: the reference is null, and an image's gain is its fitted one, else 1.
-  WriteExposureRecord(ExposureRecord{{}, 0.0, {{"a.png", 1.1}}}, dir.path() / "plain.json");
+  EXPECT_EQ(back.fitted_images, record.fitted_images);
+  // Without EXIF: the reference is null, and an image's gain is its fitted one when it is in the fitted
+  // images' folder (another dive's a.png is another image), else 1.
+  fs::create_directories(dir.path() / "images");
+  fs::create_directories(dir.path() / "other_dive");
+  WriteExposureRecord(ExposureRecord{{}, 0.0, {{"a.png", 1.1}}, dir.path() / "images"}, dir.path() / "plain.json");
   const ExposureRecord plain = ReadExposureRecord(dir.path() / "plain.json");
   EXPECT_EQ(plain.exif_reference, 0.0);
-  std::ofstream(dir.path() / "a.png") << "not read";
-  EXPECT_EQ(plain.GainOf(dir.path() / "a.png", "a.png"), 1.1);
-  EXPECT_EQ(plain.GainOf(dir.path() / "a.png", "other.png"), 1.0);
+  EXPECT_EQ(plain.GainOf(dir.path() / "images", "a.png"), 1.1);
+  EXPECT_EQ(plain.GainOf(dir.path() / "images" / ".", "a.png"), 1.1);
+  EXPECT_EQ(plain.GainOf(dir.path() / "images", "other.png"), 1.0);
+  EXPECT_EQ(plain.GainOf(dir.path() / "other_dive", "a.png"), 1.0);
+  EXPECT_FALSE(plain.HasGainsFor(dir.path() / "other_dive"));
 }
 
 TEST(ExposureRecord, BadFilesNameTheFileAndTheProblem) {
