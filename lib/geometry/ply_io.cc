@@ -253,8 +253,8 @@ Mesh ReadPly(std::istream& stream) {
           const std::size_t fan[3] = {0, k, k + 1};
           for (int c = 0; c < 3; ++c) {
             const double index = corners[fan[c]];
-            if (index < 0 || index >= 4294967295.0) {
-              throw std::runtime_error("PLY face " + std::to_string(f) + " has a negative or huge vertex index");
+            if (!(index >= 0 && index < 4294967295.0)) {  // NaN too (an ASCII file may say "nan")
+              throw std::runtime_error("PLY face " + std::to_string(f) + " has a negative, huge or NaN vertex index");
             }
             face[c] = static_cast<std::uint32_t>(index);
           }

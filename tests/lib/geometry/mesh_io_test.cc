@@ -137,12 +137,15 @@ TEST(MeshIo, OutOfRangeFaceIndexIsAnError) {
   ExpectReadError(dir.path() / "range.ply", "");
 }
 
-// A NaN list length (found by fuzz/ply_fuzzer) or float colour (found reviewing the reader) was cast to an
+// A NaN list length or vertex index (found by fuzz/ply_fuzzer) or float colour (found reviewing the reader) was cast to an
 // integer, undefined behaviour; an element without properties was "read" once per record, up to 2^63 times.
-TEST(MeshIo, NanLengthOrColourIsAnErrorAndAnEmptyElementIsReadAtOnce) {
+TEST(MeshIo, NanLengthIndexOrColourIsAnErrorAndAnEmptyElementIsReadAtOnce) {
   testing::TempDir dir;
   WriteText(dir.path() / "nan_length.ply", AsciiPly("vertex_indices", "", "nan 0 1 2\n3 0 2 3\n"));
   ExpectReadError(dir.path() / "nan_length.ply", "PLY face vertex_indices has an implausible list length");
+  // A NaN vertex index passed the range test, whose comparisons are all false for NaN (fuzz/ply_fuzzer, CI).
+  WriteText(dir.path() / "nan_index.ply", AsciiPly("vertex_indices", "", "3 0 nan 2\n3 0 2 3\n"));
+  ExpectReadError(dir.path() / "nan_index.ply", "PLY face 0 has a negative, huge or NaN vertex index");
   WriteText(dir.path() / "nan.ply",
             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
             "property float red\nproperty float green\nproperty float blue\nelement face 1\n"
