@@ -51,6 +51,8 @@ slow_accuracy_tests=(
   'ChessboardTarget\.FindsTheBoardAndCalibratesTheLutFromItsSquaresAlone'  # 38 s (320 s here)
   'Calibrator\.RecoversTheTrueLutFromTwoBoardsAndRestoresAHeldOutView'  # 39 s (360 s here)
   'WaterPrior\.FindsThePairOfLightsBesideTheCameraWhenTheRigIsAGuess'   # 22 s
+  'ExposureCalibration\.'    # stages: two calibrations each, 15-28 s (315 s here; the EXIF one's JPEG run
+                              # ended with a LeakSanitizer report of cv::fastMalloc blocks, stack unknown: to look into)
   # cli: `lutex run` end to end on the simulated survey, 50-150 s each (beyond 600 s here under load); the
   # stages they chain run here in the stages' and the commands' own tests.
   'RunTest\.(EveryStageSharesOneLoadedDive|RestoresTexturesReportsAndSkipsWhatIsUpToDate|ChessboardFramesCalibrateTheSurvey|CharucoFramesWithColourPatchesCalibrateTheSurvey|ASecondRunOnABusyWorkspaceIsRefusedAndAKilledRunsLockIsTakenOver|KilledInEveryStageAndStartedAgainEndsWithTheSameOutputs)$'
