@@ -1,11 +1,16 @@
 #include "texturing/texture_baker.h"
 
 #include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <string>
 #include <limits>
 #include <stdexcept>
 
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/logging.h"
+#include "lib/util/option_error.h"
 #include "lib/util/parallel_for.h"
 #include "texturing/atlas_packing.h"
 #include "texturing/face_adjacency.h"
@@ -16,11 +21,36 @@ namespace lutex {
 
 namespace {
 
+constexpr const char* kFitTheAtlas = "; write a format without that limit, or raise {max_size} or {texel_size}";
+
+std::string PagesHeld(const TextureBakingOptions& options) {
+  return options.max_pages_reason.empty() ? "the output holds " + std::to_string(options.max_pages)
+                                          : options.max_pages_reason;
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
+
+void CheckAtlasFits(const Mesh& mesh, const TextureBakingOptions& options) {
+  if (options.max_pages == 0 || options.charts.texel_size <= 0.0) return;
+  double area = 0.0;
+  for (const auto& face : mesh.faces) {
+    area += 0.5 * (mesh.vertices[face[1]] - mesh.vertices[face[0]]).cross(mesh.vertices[face[2]] - mesh.vertices[face[0]]).norm();
+  }
+  const double texels = area / (options.charts.texel_size * options.charts.texel_size);
+  const double page_texels = double(options.charts.max_size) * double(options.charts.max_size);
+  if (texels > page_texels * double(options.max_pages)) {
+    const double pages = std::ceil(texels / page_texels);
+    std::ostringstream texel_size;
+    texel_size << options.charts.texel_size;
+    throw OptionError("the mesh's " + std::to_string(std::lround(area)) + " square units at {texel_size} " +
+                      texel_size.str() + " need at least " + std::to_string(std::int64_t(pages)) + " pages of " +
+                      std::to_string(options.charts.max_size) + " texels, but " + PagesHeld(options) + kFitTheAtlas);
+  }
+}
 
 void TextureBakingOptions::Check() const {
   visibility.Check();
@@ -42,6 +72,7 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>
 TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, const std::vector<TextureView>& views,
                                 const ViewImageSource& source, const TextureBakingOptions& options) {
   options.Check();
+  CheckAtlasFits(mesh, options);
   if (views.empty()) throw std::invalid_argument("texture: no views to texture from");
   if (!source.linear_rgb) throw std::invalid_argument("texture: no image source");
   if (views.size() >= kNoView) throw std::invalid_argument("texture: too many views");
@@ -70,6 +101,10 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, con
   rectangles.reserve(charts.size());
   for (const TextureChart& chart : charts) rectangles.emplace_back(chart.width, chart.height);
   const AtlasLayout atlas = PackAtlas(rectangles, options.charts.max_size);
+  if (options.max_pages > 0 && atlas.page_sizes.size() > options.max_pages) {
+    throw OptionError("the atlas needs " + std::to_string(atlas.page_sizes.size()) + " pages of up to " +
+                      std::to_string(options.charts.max_size) + " texels, but " + PagesHeld(options) + kFitTheAtlas);
+  }
   const TexelLayout layout = RasterizeTexels(charts, atlas, mesh.faces.size(), options.gutter, options.num_threads);
   summary.seconds_layout = SecondsSince(start);
   LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages, "

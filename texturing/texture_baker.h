@@ -14,6 +14,7 @@
 // Images are loaded on demand through the ViewImageSource, at most one per thread, so memory depends on
 // the mesh and the atlas, not on the number of views.
 
+#include <string>
 #include <vector>
 
 #include "lib/geometry/mesh.h"
@@ -36,6 +37,12 @@ struct TextureBakingOptions {
   // Border texels (outside every triangle of a chart) within this distance of a triangle show its
   // nearest point; further padding is filled by pull-push.
   double gutter = 2.0;
+  // Most atlas pages the output can hold (a textured PLY holds one); 0: no limit. Checked once the charts
+  // are packed, before any colour is fused, and before anything when charts.texel_size bounds the atlas
+  // from below (the mesh's area in texels).
+  std::size_t max_pages = 0;
+  // Why the output holds no more, for the message (e.g. "out.ply is a textured PLY, which holds one page").
+  std::string max_pages_reason;
   // Threads for every stage; <= 0 means all cores. Results do not depend on it.
   int num_threads = 0;
   void Check() const;
@@ -64,6 +71,10 @@ struct TextureBakingResult {
   std::vector<std::uint32_t> view_of_face;
   TextureBakingSummary summary;
 };
+
+// Throws std::invalid_argument when the mesh's area at options.charts.texel_size cannot fit in
+// options.max_pages pages (nothing when either is 0): the check BakeTexture makes before any work.
+void CheckAtlasFits(const Mesh& mesh, const TextureBakingOptions& options);
 
 // Throws std::invalid_argument on bad options or an empty mesh or view list, and what the image source
 // throws.

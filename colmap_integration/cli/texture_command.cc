@@ -54,6 +54,7 @@ void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
                    "      range; 0 (default) = the native resolution of each chart's view.");
   AddViewFusionOptions(parser, &baking);
   parser.AddInt("max-page-size", &baking.charts.max_size, "Largest atlas page side in texels.");
+  parser.NameField("max_size", "max-page-size");
   parser.AddInt("padding", &baking.charts.padding, "Texels around each chart.");
   parser.AddCustom("fusion-memory", std::to_string(baking.fusion.memory_limit_bytes >> 20),
                    "MiB for the per-texel sample buffers of one pass over the images; a larger atlas is done in\n"

@@ -56,6 +56,15 @@ InputsAndOutputs PathsOf(const TextureOptions& options, const Workspace& workspa
   return paths;
 }
 
+// The baking options with the most pages `output`'s format holds (a textured PLY: one).
+TextureBakingOptions BakingFor(const fs::path& output, TextureBakingOptions baking) {
+  if (output.extension() == ".ply") {
+    baking.max_pages = 1;
+    baking.max_pages_reason = output.string() + " is a textured PLY, which holds one page";
+  }
+  return baking;
+}
+
 }  // namespace
 
 TextureSummary TextureWorkspace(const TextureOptions& options) {
@@ -70,6 +79,8 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   CheckStageMemory("texture", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
                    TextureBakingMemory(options.baking, dive.mesh().faces.size()));
+  const fs::path output = options.output.empty() ? dive.workspace().ModelPath() : options.output;
+  CheckAtlasFits(dive.mesh(), BakingFor(output, options.baking));
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();
@@ -78,14 +89,13 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   TextureSummary summary;
   summary.images = found.images;
   summary.confidence = found.confidence;
-  const fs::path output = options.output.empty() ? workspace.ModelPath() : options.output;
   const ViewImageSource source = found.Source();
   summary.georeference = ResolveGeoreference(options.georeference, workspace);
   if (summary.georeference.georeference.IsSet()) MapFrame{summary.georeference.georeference};  // checks the CRS
   const bool up_from_frame = options.up_axis == "auto" && summary.georeference.georeference.IsSet();
   summary.up = up_from_frame ? Eigen::Vector3d::UnitZ() : UpOf(options, model);
   summary.up_from_cameras = options.up_axis == "auto" && !up_from_frame;
-  TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, options.baking);
+  TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, BakingFor(output, options.baking));
   summary.baking = result.summary;
   result.textured.up = summary.up;
   result.textured.georeference = summary.georeference.georeference;

@@ -148,6 +148,13 @@ std::vector<BadInput> Cases() {
        "lies inside the sparse model"},
       {"TextureOverTheMesh", {}, "texture" + kDive + " --output {D}/W/scene/mesh.ply", "{D}/W/scene/mesh.ply",
        "the output is the mesh"},
+      // A textured PLY holds one atlas page: refused before any work when the area at the texel size cannot
+      // fit (4 x 3 m at 1 mm is 12 Mtexels), and once packed, before any colour, when the charts do not.
+      {"TexturedPlyTooLargeForOnePage", {}, "texture" + kDive + " --output {D}/out.ply --texel-size 0.001 --max-page-size 1024",
+       "{D}/out.ply", "is a textured PLY, which holds one page; write a format without that limit, or raise --max-page-size"},
+      {"TexturedPlyChartsOnManyPages", {}, "texture" + kDive + " --output {D}/out.ply --max-page-size 128 --log-level error",
+       "{D}/out.ply",
+       "pages of up to 128 texels, but"},
       {"RaycastIntoTheSparseModel", {}, "raycast" + kDive + " --output {D}/W/sparse/0", "{D}/W/sparse/0",
        "the output is the sparse model"},
       {"MosaicDemIntoTheImages", {}, "mosaic" + kDive + " --dem {D}/W/images/dem.tif", "{D}/W/images",
