@@ -15,6 +15,7 @@ packages=(
   libopenmesh-dev libembree-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgdal-dev libproj-dev gdal-bin
+  libmeshoptimizer-dev
   libgtest-dev libgmock-dev
   clang libclang-rt-14-dev
   colmap

@@ -10,6 +10,7 @@
 
 #include "lib/util/file_streams.h"
 #include "texturing/atlas_page_encoding.h"
+#include "texturing/gltf_frame.h"
 
 namespace lutex {
 
@@ -208,9 +209,9 @@ tinygltf::Model BuildModel(const TexturedMesh& textured) {
   tinygltf::Node node;
   node.mesh = 0;
   node.name = "lutex model";
-  // glTF is +Y up: the node turns the model's up to +Y by the smallest rotation (for a +Z-up model, -90
-  // degrees about x: north, +Y, goes to glTF's -Z). Positions stay local and in the model's frame.
-  const Eigen::Quaterniond gltf_from_model = Eigen::Quaterniond::FromTwoVectors(textured.up.normalized(), Eigen::Vector3d::UnitY());
+  // glTF is +Y up: the node turns the model's up to +Y (gltf_frame.h). Positions stay local and in the
+  // model's frame.
+  const Eigen::Quaterniond gltf_from_model = GltfFromModel(textured.up);
   const Eigen::Vector3d origin_in_gltf = gltf_from_model * origin;
   node.rotation = {gltf_from_model.x(), gltf_from_model.y(), gltf_from_model.z(), gltf_from_model.w()};
   node.translation = {origin_in_gltf.x(), origin_in_gltf.y(), origin_in_gltf.z()};

@@ -69,6 +69,76 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>
   return BakeTexture(mesh, RaycastScene(mesh), views, source, options);
 }
 
+ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
+                        const ViewRaycaster& raycaster, const ViewImageSource& source,
+                        const TextureBakingOptions& options) {
+  auto start = std::chrono::steady_clock::now();
+  FaceViewCandidatesOptions visibility = options.visibility;
+  visibility.num_threads = options.num_threads;
+  ChosenViews chosen{FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility), {}, 0.0, 0.0};
+  chosen.seconds_visibility = SecondsSince(start);
+  start = std::chrono::steady_clock::now();
+  chosen.selection = SelectViews(chosen.candidates, adjacency, options.selection);
+  chosen.seconds_selection = SecondsSince(start);
+  return chosen;
+}
+
+namespace {
+
+// Steps 3 to 7 for the faces whose label is not kNoView: the pages, and each face's page and corner
+// texels (by face of `mesh`) written into `textured`, whose mesh is left to the caller.
+void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
+                       const ViewRaycaster& raycaster, const ViewImageSource& source,
+                       const FaceViewCandidates& candidates, const std::vector<std::uint32_t>& view_of_face,
+                       const TextureBakingOptions& options, bool show_progress, TexturedMesh& textured,
+                       TextureBakingSummary& summary) {
+  auto start = std::chrono::steady_clock::now();
+  const std::vector<TextureChart> charts = BuildTextureCharts(mesh, adjacency, views, view_of_face, options.charts);
+  std::vector<cv::Size> rectangles;
+  rectangles.reserve(charts.size());
+  for (const TextureChart& chart : charts) rectangles.emplace_back(chart.width, chart.height);
+  const AtlasLayout atlas = PackAtlas(rectangles, options.charts.max_size);
+  if (options.max_pages > 0 && atlas.page_sizes.size() > options.max_pages) {
+    throw OptionError("the atlas needs " + std::to_string(atlas.page_sizes.size()) + " pages of up to " +
+                      std::to_string(options.charts.max_size) + " texels, but " + PagesHeld(options) + kFitTheAtlas);
+  }
+  const TexelLayout layout = RasterizeTexels(charts, atlas, mesh.faces.size(), options.gutter, options.num_threads);
+  summary.seconds_layout += SecondsSince(start);
+  if (show_progress) {
+    LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages, "
+              << layout.texels.size() << " surface texels";
+  }
+
+  start = std::chrono::steady_clock::now();
+  textured.pages.clear();
+  for (const cv::Size& size : atlas.page_sizes) {
+    textured.pages.emplace_back(size, CV_32FC3, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
+    summary.page_texels += static_cast<std::size_t>(size.area());
+  }
+  TexelFusionOptions fusion = options.fusion;
+  fusion.num_threads = options.num_threads;
+  fusion.show_progress = fusion.show_progress && show_progress;
+  summary.fusion = FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, fusion, textured.pages);
+  ParallelFor(textured.pages.size(), options.num_threads, [&](std::size_t p) { FillUnknownTexels(textured.pages[p]); });
+  summary.seconds_fusion += SecondsSince(start);
+
+  textured.face_page.assign(mesh.faces.size(), -1);
+  textured.face_corner_texels.assign(mesh.faces.size(), {});
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    const Eigen::Vector2f offset(static_cast<float>(atlas.placements[c].x), static_cast<float>(atlas.placements[c].y));
+    for (std::size_t i = 0; i < charts[c].faces.size(); ++i) {
+      const std::uint32_t face = charts[c].faces[i];
+      textured.face_page[face] = atlas.placements[c].page;
+      for (int k = 0; k < 3; ++k) textured.face_corner_texels[face][k] = charts[c].corner_texels[3 * i + k] + offset;
+    }
+  }
+  summary.num_charts += charts.size();
+  summary.num_pages += atlas.page_sizes.size();
+  summary.num_texels += layout.texels.size();
+}
+
+}  // namespace
+
 TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, const std::vector<TextureView>& views,
                                 const ViewImageSource& source, const TextureBakingOptions& options) {
   options.Check();
@@ -82,67 +152,66 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, con
   summary.num_views = views.size();
   summary.num_faces = mesh.faces.size();
 
-  auto start = std::chrono::steady_clock::now();
   const ViewRaycaster raycaster(scene);
   const FaceAdjacency adjacency(mesh);
-  FaceViewCandidatesOptions visibility = options.visibility;
-  visibility.num_threads = options.num_threads;
-  const FaceViewCandidates candidates = FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility);
-  summary.seconds_visibility = SecondsSince(start);
-
-  start = std::chrono::steady_clock::now();
-  ViewSelection selection = SelectViews(candidates, adjacency, options.selection);
-  summary.seconds_selection = SecondsSince(start);
-
-  start = std::chrono::steady_clock::now();
-  const std::vector<TextureChart> charts =
-      BuildTextureCharts(mesh, adjacency, views, selection.view_of_face, options.charts);
-  std::vector<cv::Size> rectangles;
-  rectangles.reserve(charts.size());
-  for (const TextureChart& chart : charts) rectangles.emplace_back(chart.width, chart.height);
-  const AtlasLayout atlas = PackAtlas(rectangles, options.charts.max_size);
-  if (options.max_pages > 0 && atlas.page_sizes.size() > options.max_pages) {
-    throw OptionError("the atlas needs " + std::to_string(atlas.page_sizes.size()) + " pages of up to " +
-                      std::to_string(options.charts.max_size) + " texels, but " + PagesHeld(options) + kFitTheAtlas);
-  }
-  const TexelLayout layout = RasterizeTexels(charts, atlas, mesh.faces.size(), options.gutter, options.num_threads);
-  summary.seconds_layout = SecondsSince(start);
-  LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages, "
-            << layout.texels.size() << " surface texels";
-
-  start = std::chrono::steady_clock::now();
+  ChosenViews chosen = ChooseViews(mesh, adjacency, views, raycaster, source, options);
+  summary.seconds_visibility = chosen.seconds_visibility;
+  summary.seconds_selection = chosen.seconds_selection;
   TexturedMesh& textured = result.textured;
   textured.mesh = mesh;
-  for (const cv::Size& size : atlas.page_sizes) {
-    textured.pages.emplace_back(size, CV_32FC3, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
-    summary.page_texels += static_cast<std::size_t>(size.area());
-  }
-  TexelFusionOptions fusion = options.fusion;
-  fusion.num_threads = options.num_threads;
-  summary.fusion = FuseTexels(mesh, views, raycaster, source, candidates, selection.view_of_face, layout, fusion,
-                              textured.pages);
-  ParallelFor(textured.pages.size(), options.num_threads, [&](std::size_t p) { FillUnknownTexels(textured.pages[p]); });
-  summary.seconds_fusion = SecondsSince(start);
-
-  textured.face_page.assign(mesh.faces.size(), -1);
-  textured.face_corner_texels.assign(mesh.faces.size(), {});
-  for (std::size_t c = 0; c < charts.size(); ++c) {
-    const Eigen::Vector2f offset(static_cast<float>(atlas.placements[c].x), static_cast<float>(atlas.placements[c].y));
-    for (std::size_t i = 0; i < charts[c].faces.size(); ++i) {
-      const std::uint32_t face = charts[c].faces[i];
-      textured.face_page[face] = atlas.placements[c].page;
-      for (int k = 0; k < 3; ++k) textured.face_corner_texels[face][k] = charts[c].corner_texels[3 * i + k] + offset;
-    }
-  }
-  summary.num_charts = charts.size();
-  summary.num_pages = atlas.page_sizes.size();
-  summary.num_texels = layout.texels.size();
+  BakeLabelledFaces(mesh, adjacency, views, raycaster, source, chosen.candidates, chosen.selection.view_of_face, options,
+                    /*show_progress=*/true, textured, summary);
   summary.num_textured_faces = textured.NumTexturedFaces();
   summary.seams = MeasureSeamVisibility(textured, adjacency);
-  result.view_of_face = std::move(selection.view_of_face);
-  selection.view_of_face.clear();
-  summary.selection = selection;
+  result.view_of_face = std::move(chosen.selection.view_of_face);
+  chosen.selection.view_of_face.clear();
+  summary.selection = chosen.selection;
   return result;
+}
+
+TexturedMesh BakeFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
+                       const ViewRaycaster& raycaster, const ViewImageSource& source, const ChosenViews& chosen,
+                       const std::vector<std::uint32_t>& faces, const TextureBakingOptions& options,
+                       std::vector<std::uint32_t>& source_vertex, TextureBakingSummary& summary) {
+  options.Check();
+  const std::vector<std::uint32_t>& labels = chosen.selection.view_of_face;
+  if (labels.size() != mesh.faces.size()) throw std::invalid_argument("texture: the views were chosen for another mesh");
+  std::vector<std::uint32_t> view_of_face(mesh.faces.size(), kNoView);
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (faces[i] >= mesh.faces.size() || (i > 0 && faces[i] <= faces[i - 1])) {
+      throw std::invalid_argument("texture: the faces to bake must be ascending faces of the mesh");
+    }
+    view_of_face[faces[i]] = labels[faces[i]];
+  }
+  TexturedMesh full;
+  BakeLabelledFaces(mesh, adjacency, views, raycaster, source, chosen.candidates, view_of_face, options,
+                    /*show_progress=*/false, full, summary);
+  view_of_face = {};
+
+  // The faces' own mesh: vertices in ascending order of their index in `mesh`.
+  std::vector<std::uint32_t> new_index(mesh.vertices.size(), kNoView);
+  for (std::uint32_t f : faces) {
+    for (std::uint32_t v : mesh.faces[f]) new_index[v] = 0;
+  }
+  source_vertex.clear();
+  TexturedMesh textured;
+  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) {
+    if (new_index[v] == kNoView) continue;
+    new_index[v] = static_cast<std::uint32_t>(source_vertex.size());
+    source_vertex.push_back(v);
+    textured.mesh.vertices.push_back(mesh.vertices[v]);
+  }
+  textured.pages = std::move(full.pages);
+  for (std::uint32_t f : faces) {
+    const auto& face = mesh.faces[f];
+    textured.mesh.faces.push_back({new_index[face[0]], new_index[face[1]], new_index[face[2]]});
+    textured.face_page.push_back(full.face_page[f]);
+    textured.face_corner_texels.push_back(full.face_corner_texels[f]);
+  }
+  summary.num_views = views.size();
+  summary.num_faces += faces.size();
+  summary.num_textured_faces += textured.NumTexturedFaces();
+  return textured;
 }
 
 }  // namespace lutex

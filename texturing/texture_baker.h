@@ -72,6 +72,28 @@ struct TextureBakingResult {
   TextureBakingSummary summary;
 };
 
+// Steps 1 and 2 over the whole mesh: the candidate views of every face and the view the MRF chose for it.
+// A tiled bake chooses once and bakes each tile's faces with BakeFaces, so that labels, and the colours
+// fused from them, agree across tile borders.
+struct ChosenViews {
+  FaceViewCandidates candidates;
+  ViewSelection selection;  // with the per-face labels
+  double seconds_visibility = 0.0;
+  double seconds_selection = 0.0;
+};
+ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
+                        const ViewRaycaster& raycaster, const ViewImageSource& source,
+                        const TextureBakingOptions& options);
+
+// Steps 3 to 8 for `faces` of the mesh (ascending, each once) with the views chosen for the whole mesh:
+// the result's mesh has only those faces, in that order, and the vertices they use in ascending order of
+// their index in `mesh` (`source_vertex` gives it). `summary` gets the counts and times of these steps.
+// Fusion progress is not shown (a tiled bake reports its own).
+TexturedMesh BakeFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
+                       const ViewRaycaster& raycaster, const ViewImageSource& source, const ChosenViews& chosen,
+                       const std::vector<std::uint32_t>& faces, const TextureBakingOptions& options,
+                       std::vector<std::uint32_t>& source_vertex, TextureBakingSummary& summary);
+
 // Throws std::invalid_argument when the mesh's area at options.charts.texel_size cannot fit in
 // options.max_pages pages (nothing when either is 0): the check BakeTexture makes before any work.
 void CheckAtlasFits(const Mesh& mesh, const TextureBakingOptions& options);

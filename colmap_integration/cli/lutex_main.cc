@@ -18,6 +18,7 @@
 #include "colmap_integration/cli/run_command.h"
 #include "colmap_integration/cli/simulate_command.h"
 #include "colmap_integration/cli/texture_command.h"
+#include "colmap_integration/cli/tiles_command.h"
 
 namespace {
 
@@ -37,6 +38,7 @@ const Command kCommands[] = {
     {"run", &lutex::RunRunCommand, "all of it, resumable: calibrate, restore, texture and report in W/lutex/"},
     {"simulate", &lutex::RunSimulateCommand, "render a scene description into a COLMAP workspace with ground truth"},
     {"texture", &lutex::RunTextureCommand, "bake one albedo texture onto the mesh and write GLB (or glTF, OBJ, PLY)"},
+    {"tiles", &lutex::RunTilesCommand, "the textured mesh as 3D Tiles 1.1 for web map viewers (CesiumJS), tile by tile"},
 };
 
 void PrintUsage(std::ostream& out) {

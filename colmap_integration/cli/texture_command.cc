@@ -44,9 +44,14 @@ int RunTextureCommand(int argc, char** argv) {
 }
 
 void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
-  TextureBakingOptions& baking = options->baking;
-  parser.AddFlag("no-confidence", &options->views.ignore_confidence, "Trust every pixel equally.");
-  parser.AddString("up-axis", &options->up_axis,
+  AddBakingOptions(parser, &options->baking, &options->views.ignore_confidence, &options->up_axis);
+}
+
+void AddBakingOptions(OptionParser& parser, TextureBakingOptions* baking_options, bool* ignore_confidence,
+                      std::string* up_axis) {
+  TextureBakingOptions& baking = *baking_options;
+  parser.AddFlag("no-confidence", ignore_confidence, "Trust every pixel equally.");
+  parser.AddString("up-axis", up_axis,
                    "The model's up for the GLB (glTF is +Y up): x, -x, y, -y, z, -z, or auto = opposite the\n"
                    "      cameras' mean viewing direction (snapped to an axis within 10 degrees).");
   parser.AddDouble("texel-size", &baking.charts.texel_size,

@@ -43,6 +43,7 @@ struct Workspace {
   std::filesystem::path LutPath() const { return OutputDir() / "calibration" / "lut.lut"; }
   std::filesystem::path RestoredDir() const { return OutputDir() / "restored"; }
   std::filesystem::path ModelPath() const { return OutputDir() / "model.glb"; }
+  std::filesystem::path TilesDir() const { return OutputDir() / "tiles"; }
   std::filesystem::path OrthomosaicPath() const { return OutputDir() / "mosaic" / "ortho.tif"; }
   std::filesystem::path DemPath() const { return OutputDir() / "mosaic" / "dem.tif"; }
   std::filesystem::path RunRecordsDir() const { return OutputDir() / "run"; }

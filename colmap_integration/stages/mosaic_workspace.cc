@@ -67,12 +67,7 @@ std::string WhyNotAMapWithoutGeoreference(const SparseModel& model) {
 namespace {
 
 InputsAndOutputs PathsOf(const MosaicOptions& options, const Workspace& workspace) {
-  InputsAndOutputs paths;
-  paths.AddWorkspace(workspace, "the workspace");
-  paths.AddInput(options.mesh, "the mesh");
-  paths.AddInput(options.views.images.empty() ? workspace.RestoredDir() : options.views.images, "the images to map");
-  paths.AddInput(options.views.confidence, "the confidence maps");
-  paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
+  InputsAndOutputs paths = ViewStageInputs(workspace, options.mesh, options.views, "the images to map");
   paths.AddOutput(options.output.empty() ? workspace.OrthomosaicPath() : options.output);
   if (!options.no_dem) paths.AddOutput(options.dem.empty() ? workspace.DemPath() : options.dem);
   return paths;

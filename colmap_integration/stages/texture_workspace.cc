@@ -6,12 +6,12 @@
 
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
+#include "colmap_integration/stages/model_up.h"
 #include "colmap_integration/stages/output_policy.h"
 #include "colmap_integration/stages/stage_memory.h"
 #include "colmap_integration/stages/workspace_lock.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/geo/map_frame.h"
-#include "lib/geometry/up_direction.h"
 #include "lib/util/logging.h"
 #include "lib/util/option_error.h"
 #include "texturing/textured_mesh_io.h"
@@ -25,33 +25,16 @@ void TextureOptions::Check() const {
   if (mesh.empty()) throw OptionError("{mesh} is required");
   if (!output.empty()) CheckTexturedMeshPath(output);
   if (page_encoding == ImageEncoding::kFloat) throw std::invalid_argument("pages are srgb8 or linear16");
-  if (up_axis != "auto" && !AxisFromName(up_axis)) {
-    throw OptionError("{up_axis} must be auto, x, -x, y, -y, z or -z, not '" + up_axis + "'");
-  }
+  CheckUpAxis(up_axis);
   baking.Check();
 }
 
 namespace {
 
-// The model's up: the option's axis, or from the cameras' optical axes.
-Eigen::Vector3d UpOf(const TextureOptions& options, const SparseModel& model) {
-  if (options.up_axis != "auto") return *AxisFromName(options.up_axis);
-  try {
-    return UpFromCameras(model);
-  } catch (const std::invalid_argument& error) {
-    throw OptionError(std::string(error.what()) + "; give the model's up axis with {up_axis}");
-  }
-}
-
 // What texture reads and writes (output_policy.h): the images it textures from are found later (restored
 // or not), so both candidate folders count as inputs.
 InputsAndOutputs PathsOf(const TextureOptions& options, const Workspace& workspace) {
-  InputsAndOutputs paths;
-  paths.AddWorkspace(workspace, "the workspace");
-  paths.AddInput(options.mesh, "the mesh");
-  paths.AddInput(options.views.images.empty() ? workspace.RestoredDir() : options.views.images, "the images to texture from");
-  paths.AddInput(options.views.confidence, "the confidence maps");
-  paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
+  InputsAndOutputs paths = ViewStageInputs(workspace, options.mesh, options.views, "the images to texture from");
   paths.AddOutput(options.output.empty() ? workspace.ModelPath() : options.output);
   return paths;
 }
@@ -92,12 +75,10 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   const ViewImageSource source = found.Source();
   summary.georeference = ResolveGeoreference(options.georeference, workspace);
   if (summary.georeference.georeference.IsSet()) MapFrame{summary.georeference.georeference};  // checks the CRS
-  const bool up_from_frame = options.up_axis == "auto" && summary.georeference.georeference.IsSet();
-  summary.up = up_from_frame ? Eigen::Vector3d::UnitZ() : UpOf(options, model);
-  summary.up_from_cameras = options.up_axis == "auto" && !up_from_frame;
+  summary.up = ResolveModelUp(options.up_axis, summary.georeference, model);
   TextureBakingResult result = BakeTexture(dive.mesh(), dive.scene(), views, source, BakingFor(output, options.baking));
   summary.baking = result.summary;
-  result.textured.up = summary.up;
+  result.textured.up = summary.up.up;
   result.textured.georeference = summary.georeference.georeference;
   summary.written = WriteTexturedMesh(result.textured, output, options.page_encoding);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -134,11 +115,7 @@ void PrintTextureSummary(std::ostream& out, const TextureSummary& summary) {
             << "\n";
   out << "  georeference: " << summary.georeference.georeference.Describe() << " from " << summary.georeference.source
       << " (recorded in the GLB's asset.extras.lutex)\n";
-  out << "  up: " << DirectionName(summary.up) << " of the model"
-      << (summary.up_from_cameras ? " (opposite the cameras' mean viewing direction)"
-          : summary.georeference.georeference.IsSet() && summary.up == Eigen::Vector3d::UnitZ() ? " (the georeferenced frame's)"
-                                                                                                  : " (as given)")
-      << "; the GLB turns it to glTF's +Y\n";
+  out << "  up: " << DescribeModelUp(summary.up, summary.georeference) << "; the GLB turns it to glTF's +Y\n";
   for (const auto& path : summary.written) out << "  wrote " << path.string() << "\n";
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/model_up.h"
 #include "colmap_integration/stages/workspace_georeference.h"
 #include "colmap_integration/stages/workspace_views.h"
 #include "lib/image/image_io.h"
@@ -46,8 +47,7 @@ struct TextureSummary {
   std::filesystem::path images;
   std::filesystem::path confidence;  // empty when not used
   TextureBakingSummary baking;
-  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  // in the model's frame; the GLB turns it to +Y
-  bool up_from_cameras = false;
+  ModelUp up;  // the GLB turns it to +Y
   WorkspaceGeoreference georeference;
   double seconds = 0.0;
 };

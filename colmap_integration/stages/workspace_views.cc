@@ -65,4 +65,15 @@ ViewImageSource WorkspaceViews::Source() const {
   return source;
 }
 
+InputsAndOutputs ViewStageInputs(const Workspace& workspace, const std::filesystem::path& mesh,
+                                 const WorkspaceViewsOptions& options, const std::string& images_are) {
+  InputsAndOutputs paths;
+  paths.AddWorkspace(workspace, "the workspace");
+  paths.AddInput(mesh, "the mesh");
+  paths.AddInput(options.images.empty() ? workspace.RestoredDir() : options.images, images_are);
+  paths.AddInput(options.confidence, "the confidence maps");
+  paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
+  return paths;
+}
+
 }  // namespace lutex

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "colmap_integration/io/workspace.h"
+#include "colmap_integration/stages/output_policy.h"
 #include "lib/geometry/sparse_model.h"
 #include "lib/image/image_io.h"
 #include "texturing/texture_views.h"
@@ -44,5 +45,11 @@ struct WorkspaceViews {
 // ("texture", "mosaic").
 WorkspaceViews FindWorkspaceViews(const Workspace& workspace, const SparseModel& model,
                                   const WorkspaceViewsOptions& options, const std::string& stage);
+
+// What a stage that bakes from the workspace's views reads (output_policy.h): the workspace, the mesh, the
+// images (`images_are`: "the images to texture from"), their confidence maps and the georeference file.
+// The images are found later (restored or not), so the default folder counts as an input either way.
+InputsAndOutputs ViewStageInputs(const Workspace& workspace, const std::filesystem::path& mesh,
+                                 const WorkspaceViewsOptions& options, const std::string& images_are);
 
 }  // namespace lutex

@@ -83,6 +83,11 @@ MapFrame::MapFrame(const Georeference& georeference) : georeference_(georeferenc
     throw std::invalid_argument(crs_ + ": not a projected CRS (map products need metres east and north; e.g. a UTM "
                                        "zone, EPSG:326ZZ)");
   }
+  PJ* geodetic_to_map = proj_create_crs_to_crs(proj_->context, "EPSG:4326", crs_.c_str(), nullptr);
+  if (!geodetic_to_map) throw std::invalid_argument(crs_ + ": no transformation from WGS 84 (" + proj_->LastError() + ")");
+  proj_->geodetic_to_map = proj_normalize_for_visualization(proj_->context, geodetic_to_map);  // lon, lat in
+  proj_destroy(geodetic_to_map);
+  if (!proj_->geodetic_to_map) throw std::invalid_argument(crs_ + ": " + proj_->LastError());
   if (georeference.frame != Georeference::Frame::kEnu) return;
   char pipeline[512];
   std::snprintf(pipeline, sizeof(pipeline),
@@ -91,11 +96,6 @@ MapFrame::MapFrame(const Georeference& georeference) : georeference_(georeferenc
                 georeference.origin.x(), georeference.origin.y(), georeference.origin.z());
   proj_->enu_to_geodetic = proj_create(proj_->context, pipeline);
   if (!proj_->enu_to_geodetic) throw std::invalid_argument("the ENU origin: " + proj_->LastError());
-  PJ* geodetic_to_map = proj_create_crs_to_crs(proj_->context, "EPSG:4326", crs_.c_str(), nullptr);
-  if (!geodetic_to_map) throw std::invalid_argument(crs_ + ": no transformation from WGS 84 (" + proj_->LastError() + ")");
-  proj_->geodetic_to_map = proj_normalize_for_visualization(proj_->context, geodetic_to_map);  // lon, lat in
-  proj_destroy(geodetic_to_map);
-  if (!proj_->geodetic_to_map) throw std::invalid_argument(crs_ + ": " + proj_->LastError());
 }
 
 MapFrame::~MapFrame() = default;
@@ -128,6 +128,21 @@ void MapFrame::Convert(std::vector<Eigen::Vector3d>& points, bool to_map) const 
                                proj_->LastError() + ")");
     }
   }
+}
+
+Eigen::Vector3d MapFrame::GeodeticFromModel(const Eigen::Vector3d& point_in_model) const {
+  if (!georeference_.IsSet()) throw std::invalid_argument("a model that is not georeferenced has no geodetic coordinates");
+  Eigen::Vector3d point = point_in_model;
+  if (georeference_.frame == Georeference::Frame::kEnu) {
+    proj_trans_generic(proj_->enu_to_geodetic, PJ_FWD, &point.x(), 0, 1, &point.y(), 0, 1, &point.z(), 0, 1, nullptr, 0, 0);
+  } else {
+    point += georeference_.origin;
+    proj_trans_generic(proj_->geodetic_to_map, PJ_INV, &point.x(), 0, 1, &point.y(), 0, 1, nullptr, 0, 0, nullptr, 0, 0);
+  }
+  if (!point.allFinite() || std::abs(point.x()) == HUGE_VAL) {
+    throw std::runtime_error("PROJ cannot convert a point of the model to WGS 84 (" + proj_->LastError() + ")");
+  }
+  return Eigen::Vector3d(point.y(), point.x(), point.z());
 }
 
 void MapFrame::MapFromModel(std::vector<Eigen::Vector3d>& points) const { Convert(points, true); }

@@ -45,6 +45,11 @@ class MapFrame {
   void ModelFromMap(std::vector<Eigen::Vector3d>& points) const;
 
   Eigen::Vector3d MapFromModel(const Eigen::Vector3d& point_in_model) const;
+
+  // Latitude, longitude (degrees, WGS 84) and height (metres) of a point of the model; a projected
+  // frame's heights are taken as ellipsoidal, as an ENU frame's are. Throws std::invalid_argument for a
+  // model that is not georeferenced.
+  Eigen::Vector3d GeodeticFromModel(const Eigen::Vector3d& point_in_model) const;
   Eigen::Vector3d ModelFromMap(const Eigen::Vector3d& point_in_map) const;
 
  private:

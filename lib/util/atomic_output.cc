@@ -32,13 +32,23 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path destination)
 AtomicOutputFile::~AtomicOutputFile() {
   if (!committed_) {
     std::error_code ignored;
-    std::filesystem::remove(temporary_path_, ignored);
+    std::filesystem::remove_all(temporary_path_, ignored);
   }
 }
 
 void AtomicOutputFile::Commit() {
   if (!std::filesystem::exists(temporary_path_)) {
     throw std::runtime_error(destination_.string() + ": nothing was written");
+  }
+  if (std::filesystem::is_directory(temporary_path_) && std::filesystem::is_directory(destination_)) {
+    // A folder cannot be renamed over a folder that holds files: the old one is moved aside first.
+    const std::filesystem::path old = temporary_path_.string() + ".old";
+    std::filesystem::rename(destination_, old);
+    std::filesystem::rename(temporary_path_, destination_);
+    committed_ = true;
+    std::error_code ignored;
+    std::filesystem::remove_all(old, ignored);
+    return;
   }
   std::filesystem::rename(temporary_path_, destination_);
   committed_ = true;
@@ -66,9 +76,9 @@ std::size_t RemoveStaleTemporaries(const std::filesystem::path& folder) {
   if (!std::filesystem::is_directory(folder, error)) return 0;
   std::vector<std::filesystem::path> stale;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
-    if (entry.is_regular_file() && IsStaleTemporary(entry.path())) stale.push_back(entry.path());
+    if ((entry.is_regular_file() || entry.is_directory()) && IsStaleTemporary(entry.path())) stale.push_back(entry.path());
   }
-  for (const auto& path : stale) std::filesystem::remove(path, error);
+  for (const auto& path : stale) std::filesystem::remove_all(path, error);
   return stale.size();
 }
 

@@ -3,6 +3,8 @@
 // Outputs are never left half-written: write to a temporary name beside the destination, then Commit()
 // renames it into place (atomic on POSIX within one file system). An uncommitted temporary is removed
 // by the destructor, so an exception during writing leaves no partial file and the old file intact.
+// The temporary may also be a folder the writer creates and fills (a tileset): it is removed whole, and
+// Commit() replaces a folder at the destination.
 
 #include <cstddef>
 #include <filesystem>

@@ -28,6 +28,7 @@
 #include "lib/lut/lut_file.h"
 #include "lib/util/file_lock.h"
 #include "tests/support/run_command.h"
+#include "tests/support/small_survey.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/test_scenes.h"
 #include "tests/support/tree_snapshot.h"
@@ -44,16 +45,7 @@ const fs::path& PristineDive() {
   static testing::TempDir* dir = [] {
     auto* made = new testing::TempDir();
     const fs::path root = made->path();
-    nlohmann::json scene = nlohmann::json::parse(std::ifstream(fs::path(LUTEX_SOURCE_DIR) / "examples" / "scenes" /
-                                                               "clear_two_lights.json"));
-    scene["mesh"]["synthetic"]["size"] = {4, 3};
-    scene["mesh"]["synthetic"]["cell_size"] = 0.1;
-    scene["camera"]["width"] = 160;
-    scene["camera"]["height"] = 120;
-    scene["camera"]["params"] = {80, 80, 80, 60};
-    scene["survey"] = {{"pattern", "lawnmower"}, {"x", {-1, 1}}, {"y", {-0.5, 0.5}}, {"lines", 2},
-                       {"images_per_line", 3}, {"altitude", 2.0}};
-    std::ofstream(root / "scene.json") << scene.dump(1);
+    std::ofstream(root / "scene.json") << testing::SmallSurveyScene().dump(1);
     SimulateOptions simulate;
     simulate.scene = root / "scene.json";
     simulate.output = root / "W";

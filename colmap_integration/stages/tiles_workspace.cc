@@ -1,0 +1,278 @@
+#include "colmap_integration/stages/tiles_workspace.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <set>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "colmap_integration/stages/output_policy.h"
+#include "colmap_integration/stages/stage_memory.h"
+#include "colmap_integration/stages/workspace_lock.h"
+#include "lib/geo/earth_frame.h"
+#include "lib/geo/map_frame.h"
+#include "lib/util/atomic_output.h"
+#include "lib/util/logging.h"
+#include "lib/util/option_error.h"
+#include "texturing/gltf_export.h"
+#include "texturing/gltf_frame.h"
+#include "texturing/tile_mesh.h"
+#include "texturing/tileset_json.h"
+
+namespace lutex {
+
+namespace fs = std::filesystem;
+
+void TilesOptions::Check() const {
+  if (workspace.empty()) throw OptionError("{workspace} is required");
+  if (mesh.empty()) throw OptionError("{mesh} is required");
+  CheckUpAxis(up_axis);
+  georeference.Check();
+  baking.Check();
+  tree.Check();
+}
+
+namespace {
+
+InputsAndOutputs PathsOf(const TilesOptions& options, const Workspace& workspace) {
+  InputsAndOutputs paths = ViewStageInputs(workspace, options.mesh, options.views, "the images to texture from");
+  paths.AddOutput(options.output.empty() ? workspace.TilesDir() : options.output);
+  return paths;
+}
+
+double TexturedArea(const TexturedMesh& textured) {
+  double area = 0.0;
+  for (std::size_t f = 0; f < textured.mesh.faces.size(); ++f) {
+    if (textured.face_page[f] < 0) continue;
+    const Mesh::Face& face = textured.mesh.faces[f];
+    const std::vector<Eigen::Vector3d>& v = textured.mesh.vertices;
+    area += 0.5 * (v[face[1]] - v[face[0]]).cross(v[face[2]] - v[face[0]]).norm();
+  }
+  return area;
+}
+
+// What a finished tile hands to its parent.
+struct BakedTile {
+  TileMesh geometry;
+  Eigen::AlignedBox3d box;         // of its content and its children's, in the tiles frame
+  double geometric_error = 0.0;
+  double texel_size = 0.0;         // scene units per texel of its texture
+  std::set<std::uint32_t> views;   // the views its faces were textured from
+};
+
+// Bakes the tree bottom-up, writing each tile's GLB into `folder` and its entry into `tileset`.
+class TileBaker {
+ public:
+  TileBaker(const LoadedDive& dive, const TileTree& tree, const std::vector<TextureView>& views,
+            const ViewImageSource& source, const ChosenViews& chosen, const FaceAdjacency& adjacency,
+            const TilesOptions& options, const TexturedMesh& frame, const Eigen::Matrix3d& tiles_from_model,
+            fs::path folder, Tileset& tileset, TilesSummary& summary)
+      : dive_(dive), tree_(tree), views_(views), source_(source), chosen_(chosen), adjacency_(adjacency),
+        raycaster_(dive.scene()), options_(options), frame_(frame), tiles_from_model_(tiles_from_model),
+        folder_(std::move(folder)), tileset_(tileset), summary_(summary) {
+    tileset_.tiles.resize(tree_.nodes.size());
+  }
+
+  BakedTile Bake(std::size_t node_index) {
+    const TileNode& node = tree_.nodes[node_index];
+    BakedTile baked;
+    TexturedMesh textured;
+    if (node.children.empty()) {
+      TextureBakingSummary baking;
+      textured = BakeFaces(dive_.mesh(), adjacency_, views_, raycaster_, source_, chosen_, node.faces, options_.baking,
+                           baked.geometry.source_vertex, baking);
+      baked.geometry.mesh = textured.mesh;
+      for (std::uint32_t f : node.faces) {
+        if (chosen_.selection.view_of_face[f] != kNoView) baked.views.insert(chosen_.selection.view_of_face[f]);
+      }
+      baked.texel_size = baking.num_texels > 0 ? std::sqrt(TexturedArea(textured) / double(baking.num_texels))
+                                               : options_.baking.charts.texel_size;
+      leaf_texel_sizes_.push_back(baked.texel_size);
+      summary_.num_faces += textured.mesh.faces.size();
+      summary_.num_textured_faces += textured.NumTexturedFaces();
+    } else {
+      std::vector<BakedTile> children;
+      for (std::size_t child : node.children) children.push_back(Bake(child));
+      std::vector<const TileMesh*> parts;
+      double children_error = 0.0, children_texel = 0.0;
+      for (BakedTile& child : children) {
+        parts.push_back(&child.geometry);
+        baked.box.extend(child.box);
+        baked.views.insert(child.views.begin(), child.views.end());
+        children_error = std::max(children_error, child.geometric_error);
+        children_texel = std::max(children_texel, child.texel_size);
+      }
+      SimplifiedTileMesh simplified = SimplifyTileMesh(MergeTileMeshes(parts), options_.tree.max_faces);
+      children.clear();
+      baked.geometry = std::move(simplified.tile);
+      baked.texel_size = 2.0 * children_texel;
+      textured = BakeCoarse(baked.geometry.mesh, baked.views, baked.texel_size);
+      baked.geometric_error = std::max(simplified.error + children_error, baked.texel_size);
+    }
+    for (const Eigen::Vector3d& vertex : baked.geometry.mesh.vertices) baked.box.extend(tiles_from_model_ * vertex);
+    textured.up = frame_.up;
+    textured.georeference = frame_.georeference;
+    const std::string uri = node.name + ".glb";
+    WriteGltf(textured, folder_ / uri);
+    summary_.max_tile_faces = std::max(summary_.max_tile_faces, textured.mesh.faces.size());
+    TilesetTile& tile = tileset_.tiles[node_index];
+    tile.box = baked.box;
+    tile.geometric_error = baked.geometric_error;
+    tile.content_uri = uri;
+    tile.children = node.children;
+    LogInfo() << "tiles: " << ++done_ << "/" << tree_.nodes.size() << " tiles baked (" << node.name << ", "
+              << textured.mesh.faces.size() << " faces)";
+    return baked;
+  }
+
+  const std::vector<double>& leaf_texel_sizes() const { return leaf_texel_sizes_; }
+
+ private:
+  // A parent's simplified mesh, baked from the views its children were textured from.
+  TexturedMesh BakeCoarse(const Mesh& mesh, const std::set<std::uint32_t>& view_set, double texel_size) const {
+    if (view_set.empty()) {
+      TexturedMesh untextured;
+      untextured.mesh = mesh;
+      untextured.face_page.assign(mesh.faces.size(), -1);
+      untextured.face_corner_texels.assign(mesh.faces.size(), {});
+      return untextured;
+    }
+    const std::vector<std::uint32_t> chosen_views(view_set.begin(), view_set.end());
+    std::vector<TextureView> views;
+    for (std::uint32_t v : chosen_views) views.push_back(views_[v]);
+    ViewImageSource source;
+    source.linear_rgb = [this, chosen_views](std::size_t i) { return source_.linear_rgb(chosen_views[i]); };
+    if (source_.confidence) {
+      source.confidence = [this, chosen_views](std::size_t i) { return source_.confidence(chosen_views[i]); };
+    }
+    TextureBakingOptions baking = options_.baking;
+    baking.charts.texel_size = texel_size;
+    baking.fusion.show_progress = false;
+    return BakeTexture(mesh, views, source, baking).textured;
+  }
+
+  const LoadedDive& dive_;
+  const TileTree& tree_;
+  const std::vector<TextureView>& views_;
+  const ViewImageSource& source_;
+  const ChosenViews& chosen_;
+  const FaceAdjacency& adjacency_;
+  const ViewRaycaster raycaster_;
+  const TilesOptions& options_;
+  const TexturedMesh& frame_;  // its up and georeference
+  const Eigen::Matrix3d tiles_from_model_;
+  const fs::path folder_;
+  Tileset& tileset_;
+  TilesSummary& summary_;
+  std::size_t done_ = 0;
+  std::vector<double> leaf_texel_sizes_;
+};
+
+int Depth(const TileTree& tree) {
+  int depth = 0;
+  for (const TileNode& node : tree.nodes) depth = std::max(depth, node.depth);
+  return depth;
+}
+
+}  // namespace
+
+TilesSummary TilesWorkspace(const TilesOptions& options) {
+  options.Check();
+  PathsOf(options, FindWorkspace(options.workspace)).Check();
+  return TilesWorkspace(options, LoadedDive(options.workspace, options.mesh));
+}
+
+TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive) {
+  options.Check();
+  const InputsAndOutputs paths = PathsOf(options, dive.workspace());
+  const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
+  CheckStageMemory("tiles", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
+                   TextureBakingMemory(options.baking, dive.mesh().faces.size()));
+  const auto start = std::chrono::steady_clock::now();
+  const Workspace& workspace = dive.workspace();
+  const fs::path output = options.output.empty() ? workspace.TilesDir() : options.output;
+  const WorkspaceViews found = FindWorkspaceViews(workspace, dive.model(), options.views, "tiles");
+  const ViewImageSource source = found.Source();
+  TilesSummary summary;
+  summary.images = found.images;
+  summary.georeference = ResolveGeoreference(options.georeference, workspace);
+  const Georeference& georeference = summary.georeference.georeference;
+  std::unique_ptr<MapFrame> map_frame;
+  if (georeference.IsSet()) map_frame = std::make_unique<MapFrame>(georeference);  // checks the CRS
+  summary.up = ResolveModelUp(options.up_axis, summary.georeference, dive.model());
+  const Eigen::Matrix3d tiles_from_model = TilesFromModel(summary.up.up);
+  if (found.views.empty()) throw std::invalid_argument("tiles: no views to texture from");
+
+  const TileTree tree = PartitionIntoTiles(dive.mesh(), tiles_from_model, options.tree);
+  summary.num_tiles = tree.nodes.size();
+  summary.num_leaves = tree.NumLeaves();
+  summary.depth = Depth(tree);
+  LogInfo() << "tiles: " << tree.nodes.size() << " tiles, " << summary.num_leaves << " leaves of at most "
+            << options.tree.max_faces << " faces, " << summary.depth << " levels below the root";
+
+  const FaceAdjacency adjacency(dive.mesh());
+  const ChosenViews chosen =
+      ChooseViews(dive.mesh(), adjacency, found.views, ViewRaycaster(dive.scene()), source, options.baking);
+  summary.seconds_views = chosen.seconds_visibility + chosen.seconds_selection;
+
+  AtomicOutputFile folder(output);
+  fs::create_directories(folder.temporary_path());
+  TexturedMesh frame;
+  frame.up = summary.up.up;
+  frame.georeference = georeference;
+  Tileset tileset;
+  TileBaker baker(dive, tree, found.views, source, chosen, adjacency, options, frame, tiles_from_model,
+                  folder.temporary_path(), tileset, summary);
+  baker.Bake(0);
+  std::vector<double> texels = baker.leaf_texel_sizes();
+  std::nth_element(texels.begin(), texels.begin() + texels.size() / 2, texels.end());
+  summary.leaf_texel_size = texels[texels.size() / 2];
+
+  summary.root_geometric_error = tileset.tiles[0].geometric_error;
+  tileset.geometric_error = std::max(2.0 * summary.root_geometric_error, tileset.tiles[0].box.diagonal().norm());
+  if (map_frame) {
+    const Eigen::Matrix3d model_from_tiles = tiles_from_model.transpose();
+    Eigen::Matrix4d model_from_tiles_4 = Eigen::Matrix4d::Identity();
+    model_from_tiles_4.topLeftCorner<3, 3>() = model_from_tiles;
+    tileset.ecef_from_tiles =
+        EcefFromModelNear(*map_frame, model_from_tiles * tileset.tiles[0].box.center()) * model_from_tiles_4;
+  } else {
+    LogWarning() << "tiles: the model is not georeferenced (no --crs or --enu-origin, no " << workspace.GeoreferencePath().string()
+                 << "): the tileset has no transform and will not sit on the globe";
+  }
+  nlohmann::json extras;
+  extras["up_in_model"] = {summary.up.up.x(), summary.up.up.y(), summary.up.up.z()};
+  extras["georeference"] = {{"frame", FrameName(georeference.frame)}};
+  if (georeference.IsSet()) {
+    if (!georeference.crs.empty()) extras["georeference"]["crs"] = georeference.crs;
+    extras["georeference"]["origin"] = {georeference.origin.x(), georeference.origin.y(), georeference.origin.z()};
+  }
+  tileset.lutex_extras_json = extras.dump();
+  WriteTilesetJson(tileset, folder.temporary_path() / "tileset.json");
+  folder.Commit();
+  summary.tileset = output / "tileset.json";
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+void PrintTilesSummary(std::ostream& out, const TilesSummary& summary) {
+  out << std::fixed << std::setprecision(1) << "tiles: " << summary.num_tiles << " tiles (" << summary.num_leaves
+      << " leaves, " << summary.depth << " levels below the root) in " << summary.seconds << " s\n"
+      << "  faces: " << summary.num_textured_faces << " of " << summary.num_faces << " textured in the leaves; at most "
+      << summary.max_tile_faces << " in one tile\n"
+      << std::setprecision(4) << "  texel size of the leaves: " << summary.leaf_texel_size
+      << " (median); root geometric error " << summary.root_geometric_error << "\n"
+      << std::setprecision(1) << "  time: view selection over the whole mesh " << summary.seconds_views << " s\n"
+      << "  images: " << summary.images.string() << "\n"
+      << "  georeference: " << summary.georeference.georeference.Describe() << " from " << summary.georeference.source
+      << (summary.georeference.georeference.IsSet() ? " (the root transform places the tiles on the globe)\n"
+                                                     : " (no root transform: the tiles are in the model's frame)\n")
+      << "  up: " << DescribeModelUp(summary.up, summary.georeference) << "\n"
+      << "  wrote " << summary.tileset.string() << "\n";
+}
+
+}  // namespace lutex

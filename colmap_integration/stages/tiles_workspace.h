@@ -1,0 +1,73 @@
+#pragma once
+
+// `lutex tiles`: the textured mesh as OGC 3D Tiles 1.1 for web map viewers (CesiumJS and those built on
+// it), baked tile by tile.
+//
+//   1. the model's up and georeference (model_up.h, workspace_georeference.h)
+//   2. a quadtree of tiles over the mesh's horizontal footprint, at most `tree.max_faces` faces a leaf
+//      (texturing/tile_tree.h)
+//   3. one view per face, chosen once for the whole mesh (texturing/texture_baker.h ChooseViews), so that
+//      labels and the colours fused from them agree across tile borders
+//   4. each leaf's faces baked with those labels and written as DIR/tiles/NAME.glb, then freed
+//   5. each parent, once its children are done: their meshes merged and simplified to the face budget
+//      with the tile's border locked (texturing/tile_mesh.h), baked from the views its children use at
+//      twice their coarsest texel size, written, and the children's meshes freed
+//   6. DIR/tileset.json (texturing/tileset_json.h): boxes, geometric errors (0 for leaves; a parent's is
+//      its simplification error plus its children's, and at least its texel size), refine REPLACE, and
+//      the root transform to ECEF from the georeference (lib/geo/earth_frame.h); without one, a local
+//      frame and a warning that the tiles will not sit on the globe.
+//
+// The folder is written under a temporary name beside DIR and renamed into place when complete.
+// Memory: the views chosen for every face (as for `lutex texture`), and one tile's bake at a time with
+// the meshes of at most three children per level of the tree.
+
+#include <cstddef>
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+#include "colmap_integration/stages/loaded_dive.h"
+#include "colmap_integration/stages/model_up.h"
+#include "colmap_integration/stages/workspace_georeference.h"
+#include "colmap_integration/stages/workspace_views.h"
+#include "texturing/texture_baker.h"
+#include "texturing/tile_tree.h"
+
+namespace lutex {
+
+struct TilesOptions {
+  std::filesystem::path workspace;
+  std::filesystem::path mesh;
+  WorkspaceViewsOptions views;
+  std::filesystem::path output;  // the folder; empty: W/lutex/tiles
+  TextureBakingOptions baking;
+  TileTreeOptions tree;
+  std::string up_axis = "auto";  // as for `lutex texture`
+  GeoreferenceOptions georeference;
+  std::size_t memory_limit_bytes = 0;  // 0: the machine's available memory (stage_memory.h)
+  void Check() const;
+};
+
+struct TilesSummary {
+  std::filesystem::path tileset;  // DIR/tileset.json
+  std::filesystem::path images;
+  std::size_t num_tiles = 0;
+  std::size_t num_leaves = 0;
+  int depth = 0;  // levels below the root
+  std::size_t num_faces = 0;
+  std::size_t num_textured_faces = 0;
+  std::size_t max_tile_faces = 0;   // most faces written in one tile
+  double root_geometric_error = 0.0;
+  double leaf_texel_size = 0.0;     // median over the leaves, scene units
+  ModelUp up;
+  WorkspaceGeoreference georeference;
+  double seconds_views = 0.0;       // visibility and view selection over the whole mesh
+  double seconds = 0.0;
+};
+
+TilesSummary TilesWorkspace(const TilesOptions& options);
+TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive);
+
+void PrintTilesSummary(std::ostream& out, const TilesSummary& summary);
+
+}  // namespace lutex
