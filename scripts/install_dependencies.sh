@@ -3,7 +3,8 @@
 # Debian's archive (Chromium renders lutex's HTML report and its GLB in tests; clang builds the libFuzzer
 # targets of scripts/fuzz.sh), and from the npm registry the
 # Khronos glTF-Validator (which checks lutex's GLB output), pinned by scripts/gltf_validator/package-lock.json,
-# and three.js (which renders the GLB in Chromium), pinned by scripts/threejs_viewer/package-lock.json.
+# three.js (which renders the GLB in Chromium), pinned by scripts/threejs_viewer/package-lock.json, and
+# CesiumJS (which renders the 3D Tiles in Chromium), pinned by scripts/cesium_viewer/package-lock.json.
 # Idempotent: what is present is left as it is.
 # Run as root (or through sudo).
 set -euo pipefail
@@ -48,6 +49,12 @@ validator_dir="$(dirname "$0")/gltf_validator"
 if [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]; then
   echo "install_dependencies: installing the glTF validator (npm ci in $validator_dir)"
   npm ci --prefix "$validator_dir" --no-audit --no-fund --loglevel=error
+fi
+
+cesium_dir="$(dirname "$0")/cesium_viewer"
+if [ ! -f "$cesium_dir/node_modules/cesium/package.json" ]; then
+  echo "install_dependencies: installing CesiumJS (npm ci in $cesium_dir)"
+  npm ci --prefix "$cesium_dir" --no-audit --no-fund --loglevel=error
 fi
 
 viewer_dir="$(dirname "$0")/threejs_viewer"

@@ -38,7 +38,8 @@ void CheckTree(const Tileset& tileset) {
 nlohmann::json TileJson(const Tileset& tileset, std::size_t t) {
   const TilesetTile& tile = tileset.tiles[t];
   const Eigen::Vector3d centre = tile.box.center();
-  const Eigen::Vector3d half = 0.5 * tile.box.sizes();
+  // A flat tile's box is given 1 mm of thickness: a box of zero extent is degenerate for a viewer's culling.
+  const Eigen::Vector3d half = (0.5 * tile.box.sizes()).cwiseMax(Eigen::Vector3d::Constant(0.0005));
   nlohmann::json json;
   json["boundingVolume"]["box"] = {centre.x(), centre.y(), centre.z(), half.x(), 0.0, 0.0,
                                    0.0,        half.y(),   0.0,        0.0,      0.0, half.z()};

@@ -9,7 +9,7 @@
 //             "children": [...]}}
 //
 // Bounding volumes are boxes in the tiles frame (gltf_frame.h: +Z up), axis-aligned there: centre and
-// three half-axis vectors. Only the root has a transform: the tiles frame to Earth-centred, Earth-fixed
+// three half-axis vectors, each at least 0.5 mm long. Only the root has a transform: the tiles frame to Earth-centred, Earth-fixed
 // coordinates (EPSG:4978, metres) for a georeferenced model, absent otherwise. `refine` is REPLACE on
 // the root and inherited by every tile: a tile's children, once loaded, are drawn instead of it.
 
