@@ -10,6 +10,7 @@
 #include "colmap_integration/cli/mosaic_command.h"
 #include "colmap_integration/cli/restore_command.h"
 #include "colmap_integration/cli/texture_command.h"
+#include "colmap_integration/cli/tiles_command.h"
 #include "colmap_integration/stages/run_workspace.h"
 
 namespace lutex {
@@ -29,6 +30,8 @@ int RunRunCommand(int argc, char** argv) {
       "  texture    one albedo texture for the mesh                          -> model.glb\n"
       "  mosaic     a georeferenced orthomosaic and DEM (options as lutex mosaic; --no-mosaic to skip)\n"
       "                                                                      -> mosaic/ortho.tif, dem.tif\n"
+      "  tiles      3D Tiles for web map viewers, for a georeferenced model (--tile-faces as lutex tiles;\n"
+      "             --no-tiles to skip)                                      -> tiles/tileset.json\n"
       "  report     an HTML page to judge the result                         -> report/index.html\n"
       "(and with --depth-maps a raycast stage -> raycast/). Stop it at any time, even with kill -9, and run it\n"
       "again: finished stages are skipped (W/lutex/run/STAGE.json records what each consumed: inputs by size\n"
@@ -60,9 +63,15 @@ int RunRunCommand(int argc, char** argv) {
   parser.SetGroup("mosaic");
   parser.AddFlag("mosaic", &options.make_mosaic, "Make the orthomosaic and DEM (--no-mosaic to skip).");
   AddMosaicStageOptions(parser, &options.mosaic);
+  parser.SetGroup("tiles");
+  parser.AddFlag("tiles", &options.make_tiles,
+                 "Make 3D Tiles when the model is georeferenced (--no-tiles to skip).");
+  AddTileFacesOption(parser, &options.tiles);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {
-    for (const char* stage : {"mesh", "calibrate", "restore", "texture", "mosaic"}) options.stage_settings[stage] = parser.Settings(stage);
+    for (const char* stage : {"mesh", "calibrate", "restore", "texture", "mosaic", "tiles"}) {
+      options.stage_settings[stage] = parser.Settings(stage);
+    }
 
     const RunSummary summary = RunWorkspace(options);
     std::cout << "\nlutex run: done in " << std::fixed << std::setprecision(1) << summary.seconds << " s\n";
@@ -79,6 +88,7 @@ int RunRunCommand(int argc, char** argv) {
               << "  confidence maps: " << summary.confidence.string() << "\n"
               << "  textured model:  " << summary.model.string() << "\n";
     if (!summary.mosaic.empty()) std::cout << "  orthomosaic:     " << summary.mosaic.string() << "\n";
+    if (!summary.tileset.empty()) std::cout << "  3D Tiles:        " << summary.tileset.string() << "\n";
     if (!summary.report.empty()) std::cout << "  report:          " << summary.report.string() << "\n";
   });
   return 0;

@@ -1,12 +1,13 @@
 #include "colmap_integration/cli/tiles_command.h"
 
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 #include "colmap_integration/cli/dive_options.h"
 #include "colmap_integration/cli/image_encoding_option.h"
 #include "colmap_integration/cli/mosaic_command.h"
 #include "colmap_integration/cli/texture_command.h"
-#include "colmap_integration/stages/tiles_workspace.h"
 
 namespace lutex {
 
@@ -30,17 +31,33 @@ int RunTilesCommand(int argc, char** argv) {
   AddImageEncodingOption(parser, "image-encoding", &options.views.image_encoding, "How those images are encoded:");
   parser.AddPath("confidence", &options.views.confidence, "Confidence maps (default DIR_confidence when present).");
   parser.AddPath("output", &options.output, "The tileset's folder (default W/lutex/tiles); replaced when complete.");
-  int tile_faces = static_cast<int>(options.tree.max_faces);
-  parser.AddIntInRange("tile-faces", &tile_faces, 1, 100000000, "Most faces in one tile (leaves, and each coarser level).");
-  parser.NameField("max_faces", "tile-faces");
+  AddTileFacesOption(parser, &options);
   AddThreadsOption(parser, &options.baking.num_threads);
   AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   AddGeoreferenceOptions(parser, &options.georeference);
   AddBakingOptions(parser, &options.baking, &options.views.ignore_confidence, &options.up_axis);
   if (!parser.Parse(argc, argv, 2)) return 0;
-  options.tree.max_faces = static_cast<std::size_t>(tile_faces);
   parser.RunWithFlags([&] { PrintTilesSummary(std::cout, TilesWorkspace(options)); });
   return 0;
+}
+
+void AddTileFacesOption(OptionParser& parser, TilesOptions* options) {
+  parser.AddCustom("tile-faces", std::to_string(options->tree.max_faces),
+                   "Most faces in one tile (the leaves, and each coarser level).", [options](const std::string& text) {
+                     std::size_t used = 0;
+                     unsigned long long faces = 0;
+                     try {
+                       faces = std::stoull(text, &used);
+                     } catch (const std::exception&) {
+                       used = 0;
+                     }
+                     if (used != text.size() || faces < 1 || faces > 1000000000ULL || text[0] == '-') {
+                       throw std::invalid_argument("--tile-faces must be a whole number of faces, at least 1, not '" +
+                                                   text + "'");
+                     }
+                     options->tree.max_faces = static_cast<std::size_t>(faces);
+                   });
+  parser.NameField("max_faces", "tile-faces");
 }
 
 }  // namespace lutex

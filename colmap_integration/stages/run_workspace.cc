@@ -272,6 +272,39 @@ class DiveRun {
     }));
   }
 
+  // The 3D Tiles, from the restored images, with the texture's view selection and fusion; only for a
+  // georeferenced model (tiles that do not sit on the globe are of no use to a map viewer).
+  void Tiles() {
+    TilesOptions tiles = options_.tiles;
+    tiles.workspace = options_.workspace;
+    tiles.mesh = mesh_;
+    tiles.views = TextureViews();
+    tiles.georeference = options_.mosaic.georeference;
+    tiles.output = workspace_.TilesDir();
+    tiles.baking = options_.texture.baking;
+    tiles.baking.num_threads = options_.num_threads;
+    tiles.up_axis = options_.texture.up_axis;
+    tiles.memory_limit_bytes = options_.memory_limit_bytes;
+    const WorkspaceGeoreference georeference = ResolveGeoreference(tiles.georeference, workspace_);
+    if (!georeference.georeference.IsSet()) {
+      summary_.stages.push_back({"tiles", "not needed", 0.0,
+                                 "tiles: skipped: the model is not georeferenced (no --crs or --enu-origin, no " +
+                                     workspace_.GeoreferencePath().string() + "), so 3D Tiles would not sit on the globe\n"});
+      return;
+    }
+    summary_.tileset = tiles.output / "tileset.json";
+    StageRecord record = BaseRecord("tiles");
+    for (const auto& [name, value] : TextureSettings()) record.AddSetting("texture " + name, value);
+    record.AddSetting("image-encoding", ImageEncodingName(tiles.views.image_encoding));
+    record.AddSetting("georeference", georeference.georeference.Describe());
+    AddFolder(&record, summary_.restored);
+    if (!tiles.views.ignore_confidence) AddFolder(&record, summary_.confidence);
+    record.AddOutput(summary_.tileset);
+    summary_.stages.push_back(runner_.Run(record, {tiles.output.parent_path()}, [&](bool) {
+      return SummaryText(TilesWorkspace(tiles, Dive()), PrintTilesSummary);
+    }));
+  }
+
   void Report() {
     ReportOptions report;
     report.workspace = options_.workspace;
@@ -342,6 +375,10 @@ InputsAndOutputs RunPaths(const RunOptions& options, const Workspace& workspace)
     paths.AddOutput(workspace.OrthomosaicPath());
     paths.AddOutput(workspace.DemPath());
   }
+  if (options.make_tiles) {
+    paths.AddInput(workspace.GeoreferencePath(), "the georeference file");
+    paths.AddOutput(workspace.TilesDir());
+  }
   if (options.report) paths.AddOutput(workspace.ReportDir());
   return paths;
 }
@@ -373,6 +410,7 @@ RunSummary RunWorkspace(const RunOptions& options) {
   run.Restore();
   run.Texture();
   if (options.make_mosaic) run.Mosaic();
+  if (options.make_tiles) run.Tiles();
   run.summary().seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.report) run.Report();
   return run.summary();

@@ -11,6 +11,8 @@
 //   texture                              model.glb
 //   mosaic      (unless mosaic is off)   mosaic/        ortho.tif, dem.tif (lutex mosaic); skipped with a
 //                                                       note for a model with no georeference that is not z-up
+//   tiles       (unless tiles is off)    tiles/         tileset.json and its GLB tiles (lutex tiles); skipped
+//                                                       with a note for a model with no georeference
 //   report                               report/index.html (lutex report)
 //
 // Resumable: each stage keeps a record in W/lutex/run/STAGE.json (stage_record.h) of what it consumed
@@ -33,6 +35,7 @@
 #include "colmap_integration/stages/raycast_workspace.h"
 #include "colmap_integration/stages/restore_workspace.h"
 #include "colmap_integration/stages/texture_workspace.h"
+#include "colmap_integration/stages/tiles_workspace.h"
 
 namespace lutex {
 
@@ -54,7 +57,9 @@ struct RunOptions {
   TextureOptions texture;
   MosaicOptions mosaic;  // its view selection and fusion are the texture's
   bool make_mosaic = true;
-  // Per stage ("raycast", "calibrate", "restore", "texture", "mosaic"), the settings that shape its output, by
+  TilesOptions tiles;  // its baking options and up axis are the texture's
+  bool make_tiles = true;
+  // Per stage ("raycast", "calibrate", "restore", "texture", "mosaic", "tiles"), the settings that shape its output, by
   // option name, as the command line and config file gave them; part of the stage's fingerprint.
   std::map<std::string, std::map<std::string, std::string>> stage_settings;
   // Redo every stage even when its record says it is up to date.
@@ -83,6 +88,7 @@ struct RunSummary {
   std::filesystem::path confidence;
   std::filesystem::path model;
   std::filesystem::path mosaic;  // the orthomosaic; empty when not made
+  std::filesystem::path tileset;  // the 3D Tiles' tileset.json; empty when not made
   std::filesystem::path report;  // empty without report
   double seconds = 0.0;
 };

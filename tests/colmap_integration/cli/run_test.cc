@@ -243,21 +243,23 @@ int TimesMeshWasRead(const std::string& output, const fs::path& mesh) {
   return count;
 }
 
-// Every stage (raycast, calibrate, restore, texture) works on the dive `lutex run` loaded once: the survey's
-// mesh is read once, not once per stage, and so is the mesh of the separate target images.
+// Every stage (raycast, calibrate, restore, texture, mosaic, tiles) works on the dive `lutex run` loaded
+// once: the survey's mesh is read once, not once per stage, and so is the mesh of the separate target
+// images. The model is georeferenced here, so the tiles stage runs.
 TEST_F(RunTest, EveryStageSharesOneLoadedDive) {
   testing::TempDir dir;
   const fs::path workspace = CopyOfSurvey(dir.path() / "W");
-  const testing::CommandResult run = Run(workspace, "--depth-maps --no-report --log-level debug");
+  const testing::CommandResult run =
+      Run(workspace, "--depth-maps --no-report --log-level debug --enu-origin 54.32,10.14,-20 --tile-faces 20000");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  for (const char* stage : {"raycast", "calibrate", "restore", "texture"}) {
+  EXPECT_TRUE(fs::exists(workspace / "lutex" / "tiles" / "tileset.json"));
+  for (const char* stage : {"raycast", "calibrate", "restore", "texture", "mosaic", "tiles"}) {
     EXPECT_NE(run.output.find(std::string("[") + stage + ": done"), std::string::npos) << stage;
   }
   EXPECT_EQ(TimesMeshWasRead(run.output, workspace / "scene" / "mesh.ply"), 1) << run.output;
   EXPECT_EQ(TimesMeshWasRead(run.output, data_->path() / "board" / "scene" / "mesh.ply"), 1);
-  // The simulated seafloor is +Z up and the survey looks down: the GLB is turned to glTF's +Y from that.
-  EXPECT_NE(run.output.find("up: +z of the model (opposite the cameras' mean viewing direction)"), std::string::npos)
-      << run.output;
+  // A georeferenced model's up is its frame's +z: the GLB and the tiles are turned to glTF's +Y from that.
+  EXPECT_NE(run.output.find("up: +z of the model (the georeferenced frame's)"), std::string::npos) << run.output;
 }
 
 TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
@@ -274,6 +276,12 @@ TEST_F(RunTest, RestoresTexturesReportsAndSkipsWhatIsUpToDate) {
 
   EXPECT_TRUE(fs::exists(workspace / "lutex" / "mosaic" / "ortho.tif"));
   EXPECT_TRUE(fs::exists(workspace / "lutex" / "mosaic" / "dem.tif"));
+  EXPECT_NE(first.output.find("[tiles: not needed]\ntiles: skipped: the model is not georeferenced"), std::string::npos)
+      << first.output;
+  EXPECT_FALSE(fs::exists(workspace / "lutex" / "tiles"));
+  // The simulated seafloor is +Z up and the survey looks down: the GLB is turned to glTF's +Y from that.
+  EXPECT_NE(first.output.find("up: +z of the model (opposite the cameras' mean viewing direction)"), std::string::npos)
+      << first.output;
   const testing::GltfValidation validation = testing::ValidateGltf(workspace / "lutex" / "model.glb");
   if (validation.ran) {
     EXPECT_TRUE(validation.valid) << validation.output;
