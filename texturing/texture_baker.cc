@@ -16,6 +16,7 @@
 #include "texturing/face_adjacency.h"
 #include "texturing/texel_layout.h"
 #include "texturing/texture_fill.h"
+#include "texturing/tile_mesh.h"
 
 namespace lutex {
 
@@ -169,45 +170,35 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, con
   return result;
 }
 
-TexturedMesh BakeFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
-                       const ViewRaycaster& raycaster, const ViewImageSource& source, const ChosenViews& chosen,
-                       const std::vector<std::uint32_t>& faces, const TextureBakingOptions& options,
-                       std::vector<std::uint32_t>& source_vertex, TextureBakingSummary& summary) {
+TexturedMesh BakeFaces(const Mesh& mesh, const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
+                       const ViewImageSource& source, const ChosenViews& chosen, const std::vector<std::uint32_t>& faces,
+                       const TextureBakingOptions& options, std::vector<std::uint32_t>& source_vertex,
+                       TextureBakingSummary& summary) {
   options.Check();
   const std::vector<std::uint32_t>& labels = chosen.selection.view_of_face;
   if (labels.size() != mesh.faces.size()) throw std::invalid_argument("texture: the views were chosen for another mesh");
-  std::vector<std::uint32_t> view_of_face(mesh.faces.size(), kNoView);
   for (std::size_t i = 0; i < faces.size(); ++i) {
     if (faces[i] >= mesh.faces.size() || (i > 0 && faces[i] <= faces[i - 1])) {
       throw std::invalid_argument("texture: the faces to bake must be ascending faces of the mesh");
     }
-    view_of_face[faces[i]] = labels[faces[i]];
   }
-  TexturedMesh full;
-  BakeLabelledFaces(mesh, adjacency, views, raycaster, source, chosen.candidates, view_of_face, options,
-                    /*show_progress=*/false, full, summary);
-  view_of_face = {};
-
-  // The faces' own mesh: vertices in ascending order of their index in `mesh`.
-  std::vector<std::uint32_t> new_index(mesh.vertices.size(), kNoView);
-  for (std::uint32_t f : faces) {
-    for (std::uint32_t v : mesh.faces[f]) new_index[v] = 0;
-  }
-  source_vertex.clear();
+  // The faces' own mesh and tables, so that the work and memory are those of the faces, not of the mesh.
+  // Depth tests against the whole mesh's ray casts keep occlusion by the rest of the surface.
+  TileMesh part = ExtractTileMesh(mesh, faces);
+  source_vertex = std::move(part.source_vertex);
   TexturedMesh textured;
-  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) {
-    if (new_index[v] == kNoView) continue;
-    new_index[v] = static_cast<std::uint32_t>(source_vertex.size());
-    source_vertex.push_back(v);
-    textured.mesh.vertices.push_back(mesh.vertices[v]);
+  textured.mesh = std::move(part.mesh);
+  const FaceAdjacency adjacency(textured.mesh);
+  FaceViewCandidates candidates(faces.size(), options.visibility.max_views_per_face);
+  std::vector<std::uint32_t> view_of_face(faces.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    for (const FaceViewCandidate* c = chosen.candidates.begin(faces[i]); c != chosen.candidates.end(faces[i]); ++c) {
+      candidates.Offer(static_cast<std::uint32_t>(i), *c);
+    }
+    view_of_face[i] = labels[faces[i]];
   }
-  textured.pages = std::move(full.pages);
-  for (std::uint32_t f : faces) {
-    const auto& face = mesh.faces[f];
-    textured.mesh.faces.push_back({new_index[face[0]], new_index[face[1]], new_index[face[2]]});
-    textured.face_page.push_back(full.face_page[f]);
-    textured.face_corner_texels.push_back(full.face_corner_texels[f]);
-  }
+  BakeLabelledFaces(textured.mesh, adjacency, views, raycaster, source, candidates, view_of_face, options,
+                    /*show_progress=*/false, textured, summary);
   summary.num_views = views.size();
   summary.num_faces += faces.size();
   summary.num_textured_faces += textured.NumTexturedFaces();

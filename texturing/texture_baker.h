@@ -85,14 +85,15 @@ ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const 
                         const ViewRaycaster& raycaster, const ViewImageSource& source,
                         const TextureBakingOptions& options);
 
-// Steps 3 to 8 for `faces` of the mesh (ascending, each once) with the views chosen for the whole mesh:
-// the result's mesh has only those faces, in that order, and the vertices they use in ascending order of
-// their index in `mesh` (`source_vertex` gives it). `summary` gets the counts and times of these steps.
-// Fusion progress is not shown (a tiled bake reports its own).
-TexturedMesh BakeFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
-                       const ViewRaycaster& raycaster, const ViewImageSource& source, const ChosenViews& chosen,
-                       const std::vector<std::uint32_t>& faces, const TextureBakingOptions& options,
-                       std::vector<std::uint32_t>& source_vertex, TextureBakingSummary& summary);
+// Steps 3 to 7 for `faces` of the mesh (ascending, each once) with the views chosen for the whole mesh
+// (with `options` as chosen): the result's mesh has only those faces, in that order, and the vertices they
+// use in ascending order of their index in `mesh` (`source_vertex` gives it). Memory and work are those of
+// the faces; the raycaster is the whole mesh's, so the rest of the surface still occludes. `summary` gets
+// the counts and times of these steps. Fusion progress is not shown (a tiled bake reports its own).
+TexturedMesh BakeFaces(const Mesh& mesh, const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
+                       const ViewImageSource& source, const ChosenViews& chosen, const std::vector<std::uint32_t>& faces,
+                       const TextureBakingOptions& options, std::vector<std::uint32_t>& source_vertex,
+                       TextureBakingSummary& summary);
 
 // Throws std::invalid_argument when the mesh's area at options.charts.texel_size cannot fit in
 // options.max_pages pages (nothing when either is 0): the check BakeTexture makes before any work.

@@ -68,11 +68,9 @@ struct BakedTile {
 class TileBaker {
  public:
   TileBaker(const LoadedDive& dive, const TileTree& tree, const std::vector<TextureView>& views,
-            const ViewImageSource& source, const ChosenViews& chosen, const FaceAdjacency& adjacency,
-            const TilesOptions& options, const TexturedMesh& frame, const Eigen::Matrix3d& tiles_from_model,
+            const ViewImageSource& source, const ChosenViews& chosen, const TilesOptions& options, const TexturedMesh& frame, const Eigen::Matrix3d& tiles_from_model,
             fs::path folder, Tileset& tileset, TilesSummary& summary)
-      : dive_(dive), tree_(tree), views_(views), source_(source), chosen_(chosen), adjacency_(adjacency),
-        raycaster_(dive.scene()), options_(options), frame_(frame), tiles_from_model_(tiles_from_model),
+      : dive_(dive), tree_(tree), views_(views), source_(source), chosen_(chosen), raycaster_(dive.scene()), options_(options), frame_(frame), tiles_from_model_(tiles_from_model),
         folder_(std::move(folder)), tileset_(tileset), summary_(summary) {
     tileset_.tiles.resize(tree_.nodes.size());
   }
@@ -83,7 +81,7 @@ class TileBaker {
     TexturedMesh textured;
     if (node.children.empty()) {
       TextureBakingSummary baking;
-      textured = BakeFaces(dive_.mesh(), adjacency_, views_, raycaster_, source_, chosen_, node.faces, options_.baking,
+      textured = BakeFaces(dive_.mesh(), views_, raycaster_, source_, chosen_, node.faces, options_.baking,
                            baked.geometry.source_vertex, baking);
       baked.geometry.mesh = textured.mesh;
       for (std::uint32_t f : node.faces) {
@@ -160,7 +158,6 @@ class TileBaker {
   const std::vector<TextureView>& views_;
   const ViewImageSource& source_;
   const ChosenViews& chosen_;
-  const FaceAdjacency& adjacency_;
   const ViewRaycaster raycaster_;
   const TilesOptions& options_;
   const TexturedMesh& frame_;  // its up and georeference
@@ -225,7 +222,7 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   frame.up = summary.up.up;
   frame.georeference = georeference;
   Tileset tileset;
-  TileBaker baker(dive, tree, found.views, source, chosen, adjacency, options, frame, tiles_from_model,
+  TileBaker baker(dive, tree, found.views, source, chosen, options, frame, tiles_from_model,
                   folder.temporary_path(), tileset, summary);
   baker.Bake(0);
   std::vector<double> texels = baker.leaf_texel_sizes();

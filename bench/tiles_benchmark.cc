@@ -1,0 +1,124 @@
+// 3D Tiles of a growing survey: the same seafloor and survey pattern over an area 1x, 2x and 4x as large
+// (more faces and more images, at the same density). For each: `lutex tiles` and `lutex texture` (the
+// single GLB) time and peak memory (resident set, each in a child process that does nothing else),
+// against plain decoding of the same images in the same run, and the tile count. What tiling promises:
+// peak memory that does not grow with the area. Not a test.
+//
+//   tiles_benchmark [--images 50] [--tile-faces 100000] [--num-threads 0]
+//
+// At the defaults the largest area is the texture benchmark's dive: 20 x 12.5 m, 1.25 M faces, 200 images
+// of 640 x 480.
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "bench/bench_dive.h"
+#include "bench/bench_options.h"
+#include "bench/measure_in_child.h"
+#include "colmap_integration/stages/texture_workspace.h"
+#include "colmap_integration/stages/tiles_workspace.h"
+#include "lib/util/logging.h"
+#include "lib/util/parallel_for.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Measurement {
+  double seconds = 0.0;
+  double peak_mib = 0.0;
+  double tiles = 0.0;
+  double faces = 0.0;
+};
+
+// A 10 x 6.25 m patch of seafloor (0.02 m cells: 312 k faces) per unit of area, `width` x `height` units,
+// surveyed by lawnmower lines 1.25 m apart at 2 m altitude.
+void SimulateArea(const fs::path& root, int width, int height, int images_per_line, int num_threads) {
+  const double size_x = 10.0 * width, size_y = 6.25 * height;
+  const int lines = 4 * height;
+  lutex::bench::SimulateDive(
+      root,
+      R"({"synthetic": {"size": [)" + std::to_string(size_x) + ", " + std::to_string(size_y) +
+          R"(], "cell_size": 0.02, "relief": 0.2}})",
+      R"({"model": "PINHOLE", "width": 640, "height": 480, "params": [400, 400, 320, 240]})",
+      R"({"pattern": "lawnmower", "x": [)" + std::to_string(-0.5 * size_x + 1.5) + ", " +
+          std::to_string(0.5 * size_x - 1.5) + R"(], "y": [)" + std::to_string(-0.5 * size_y + 0.6) + ", " +
+          std::to_string(0.5 * size_y - 0.6) + R"(], "lines": )" + std::to_string(lines) +
+          R"(, "images_per_line": )" + std::to_string(images_per_line * width) + R"(, "altitude": 2})",
+      num_threads);
+}
+
+Measurement Tiles(const fs::path& workspace, std::size_t tile_faces, int num_threads) {
+  using namespace lutex;
+  TilesOptions options;
+  options.workspace = workspace;
+  options.mesh = workspace / "scene" / "mesh.ply";
+  options.views.images = workspace / "images";
+  options.output = workspace.parent_path() / "tiles";
+  options.tree.max_faces = tile_faces;
+  options.baking.num_threads = num_threads;
+  options.georeference.enu_origin = "54.32,10.14,-20";
+  const auto start = std::chrono::steady_clock::now();
+  const TilesSummary summary = TilesWorkspace(options);
+  Measurement measurement;
+  measurement.seconds = bench::SecondsSince(start);
+  measurement.tiles = double(summary.num_tiles);
+  measurement.faces = double(summary.num_faces);
+  return measurement;
+}
+
+Measurement Texture(const fs::path& workspace, int num_threads) {
+  using namespace lutex;
+  TextureOptions options;
+  options.workspace = workspace;
+  options.mesh = workspace / "scene" / "mesh.ply";
+  options.views.images = workspace / "images";
+  options.output = workspace.parent_path() / "model.glb";
+  options.baking.num_threads = num_threads;
+  const auto start = std::chrono::steady_clock::now();
+  const TextureSummary summary = TextureWorkspace(options);
+  Measurement measurement;
+  measurement.seconds = bench::SecondsSince(start);
+  measurement.tiles = 1.0;
+  measurement.faces = double(summary.baking.num_faces);
+  return measurement;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lutex;
+  const int images = bench::IntOption(argc, argv, "--images", 50);
+  const int tile_faces = bench::IntOption(argc, argv, "--tile-faces", 100000);
+  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  SetLogLevel(LogLevel::kWarning);
+  const fs::path root = fs::temp_directory_path() / "lutex_tiles_benchmark";
+  fs::remove_all(root);
+  const int images_per_line = std::max(1, images / 4);
+  std::printf("tiles benchmark: %d threads, %d faces a tile; areas 1x, 2x, 4x of 10 x 6.25 m (312 k faces, %d images)\n",
+              num_threads, tile_faces, 4 * images_per_line);
+  std::printf("%5s %8s %7s %11s %10s %7s %11s %12s %10s %11s\n", "area", "Mfaces", "images", "decode [s]",
+              "tiles [s]", "ratio", "tiles [MiB]", "texture [s]", "ratio", "tex. [MiB]");
+  const struct {
+    int factor, width, height;
+  } areas[] = {{1, 1, 1}, {2, 2, 1}, {4, 2, 2}};
+  for (const auto& area : areas) {
+    const fs::path dive = root / ("area_" + std::to_string(area.factor));
+    bench::InChild<Measurement>([&] {
+      SimulateArea(dive, area.width, area.height, images_per_line, num_threads);
+      return Measurement{};
+    });
+    const double decode = bench::DecodeSeconds(dive / "W", num_threads);
+    const Measurement tiles = bench::InChild<Measurement>([&] { return Tiles(dive / "W", tile_faces, num_threads); });
+    const Measurement texture = bench::InChild<Measurement>([&] { return Texture(dive / "W", num_threads); });
+    std::printf("%4dx %8.2f %7d %11.2f %10.2f %7.1f %11.0f %12.2f %10.1f %11.0f   (%0.f tiles)\n", area.factor,
+                tiles.faces / 1e6, 4 * images_per_line * area.factor, decode, tiles.seconds, tiles.seconds / decode,
+                tiles.peak_mib, texture.seconds, texture.seconds / decode, texture.peak_mib, tiles.tiles);
+    std::fflush(stdout);
+    fs::remove_all(dive);
+  }
+  fs::remove_all(root);
+  return 0;
+}
