@@ -11,10 +11,8 @@
 #include "lib/util/parallel_for.h"
 #include "lib/util/progress.h"
 #include "texturing/face_adjacency.h"
-#include "texturing/face_view_candidates.h"
 #include "texturing/texel_fusion.h"
 #include "texturing/texel_layout.h"
-#include "texturing/view_selection.h"
 
 namespace lutex {
 
@@ -137,11 +135,10 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const RaycastScene& scene, 
 
   auto start = std::chrono::steady_clock::now();
   const ViewRaycaster raycaster(scene);
-  const FaceAdjacency adjacency(mesh);
-  FaceViewCandidatesOptions visibility = options.baking.visibility;
-  visibility.num_threads = num_threads;
-  const FaceViewCandidates candidates = FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility);
-  const ViewSelection selection = SelectViews(candidates, adjacency, options.baking.selection);
+  const ChosenViews chosen = ChooseViews(mesh, FaceAdjacency(mesh), views, raycaster, source, options.baking);
+  const FaceViewCandidates& candidates = chosen.candidates;
+  const std::vector<std::uint32_t>& view_of_face = chosen.selection.view_of_face;
+  summary.levelling = chosen.levelling;
   summary.seconds_selection = SecondsSince(start);
 
   start = std::chrono::steady_clock::now();
@@ -193,7 +190,8 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const RaycastScene& scene, 
       tile.height = cv::Mat(cells.size(), CV_32FC1, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
       if (!layout.texels.empty()) {
         const TexelFusionSummary fused =
-            FuseTexels(mesh, views, raycaster, source, candidates, selection.view_of_face, layout, fusion, pages);
+            FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, fusion, pages);
+        ApplySeamCorrections(mesh, view_of_face, chosen.corrections, /*source_vertex=*/{}, layout, num_threads, pages);
         summary.tile_view_reads += fused.views_read;
         samples += fused.mean_samples_per_texel * double(fused.num_texels);
         std::vector<Eigen::Vector3d> points(layout.texels.size());

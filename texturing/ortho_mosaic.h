@@ -11,8 +11,9 @@
 // layout for the same fusion. Its height is the point's height in the map frame. Cells with no surface
 // below them, or whose surface no view sees, are nodata (NaN).
 //
-// Visibility and view selection are solved once for the whole mesh (as for the texture); then each tile
-// is laid out, fused (reading only the views that see its faces) and handed to the caller, then freed:
+// Visibility, view selection and seam levelling are solved once for the whole mesh (texture_baker.h
+// ChooseViews, as for the texture: a cell's colour gets its face's seam correction); then each tile is
+// laid out, fused (reading only the views that see its faces) and handed to the caller, then freed:
 // memory is bounded by the tile size and the threads, not by the mosaic's size. Results do not depend on
 // the thread count.
 
@@ -72,7 +73,8 @@ struct OrthoMosaicSummary {
   std::size_t num_views = 0;
   std::size_t tile_view_reads = 0;  // images read over all tiles (a view is read by each tile it reaches)
   double mean_samples_per_cell = 0.0;
-  double seconds_selection = 0.0;  // visibility and view selection
+  SeamLevellingSummary levelling;
+  double seconds_selection = 0.0;  // visibility, view selection and seam levelling
   double seconds_tiles = 0.0;
 };
 

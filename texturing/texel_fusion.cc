@@ -204,9 +204,9 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     std::vector<TexelSamples> samples(end_texel - first_texel);
     std::optional<ProgressReporter> progress;
     if (options.show_progress) {
-      progress.emplace(passes.size() > 1 ? "texture: colours, pass " + std::to_string(p + 1) + "/" +
+      progress.emplace(passes.size() > 1 ? options.progress_label + ", pass " + std::to_string(p + 1) + "/" +
                                                std::to_string(passes.size())
-                                         : std::string("texture: colours"),
+                                         : options.progress_label,
                        used_views.size(), "views");
     }
     ParallelForOnWorkers(used_views.size(), options.num_threads, [&](std::size_t i, int worker) {

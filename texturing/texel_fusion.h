@@ -20,6 +20,7 @@
 // passes over the views as `memory_limit_bytes` needs (each pass reads only the views its charts need).
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -45,6 +46,8 @@ struct TexelFusionOptions {
   int num_threads = 0;
   // Progress over the views on stderr; off for callers that fuse many small layouts and report their own.
   bool show_progress = true;
+  // What the progress line says it is doing.
+  std::string progress_label = "texture: colours";
 };
 
 struct TexelFusionSummary {

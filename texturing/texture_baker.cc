@@ -56,6 +56,7 @@ void CheckAtlasFits(const Mesh& mesh, const TextureBakingOptions& options) {
 void TextureBakingOptions::Check() const {
   visibility.Check();
   selection.Check();
+  levelling.Check();
   charts.Check();
   if (!(gutter >= 0.0 && gutter <= charts.padding + 0.5)) {
     throw std::invalid_argument("the gutter must be in [0, padding + 0.5] texels");
@@ -76,21 +77,27 @@ ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const 
   auto start = std::chrono::steady_clock::now();
   FaceViewCandidatesOptions visibility = options.visibility;
   visibility.num_threads = options.num_threads;
-  ChosenViews chosen{FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility), {}, 0.0, 0.0};
+  ChosenViews chosen{FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility), {}, {}, {}, 0.0, 0.0};
   chosen.seconds_visibility = SecondsSince(start);
   start = std::chrono::steady_clock::now();
   chosen.selection = SelectViews(chosen.candidates, adjacency, options.selection);
   chosen.seconds_selection = SecondsSince(start);
+  TexelFusionOptions fusion = options.fusion;
+  fusion.num_threads = options.num_threads;
+  chosen.corrections = LevelSeams(mesh, adjacency, views, raycaster, source, chosen.candidates,
+                                  chosen.selection.view_of_face, fusion, options.levelling, &chosen.levelling);
   return chosen;
 }
 
 namespace {
 
 // Steps 3 to 7 for the faces whose label is not kNoView: the pages, and each face's page and corner
-// texels (by face of `mesh`) written into `textured`, whose mesh is left to the caller.
+// texels (by face of `mesh`) written into `textured`, whose mesh is left to the caller. `source_vertex`
+// as for ApplySeamCorrections (seam_levelling.h).
 void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
                        const ViewRaycaster& raycaster, const ViewImageSource& source,
                        const FaceViewCandidates& candidates, const std::vector<std::uint32_t>& view_of_face,
+                       const SeamCorrections& corrections, const std::vector<std::uint32_t>& source_vertex,
                        const TextureBakingOptions& options, bool show_progress, TexturedMesh& textured,
                        TextureBakingSummary& summary) {
   auto start = std::chrono::steady_clock::now();
@@ -120,6 +127,7 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
   fusion.num_threads = options.num_threads;
   fusion.show_progress = fusion.show_progress && show_progress;
   summary.fusion = FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, fusion, textured.pages);
+  ApplySeamCorrections(mesh, view_of_face, corrections, source_vertex, layout, options.num_threads, textured.pages);
   ParallelFor(textured.pages.size(), options.num_threads, [&](std::size_t p) { FillUnknownTexels(textured.pages[p]); });
   summary.seconds_fusion += SecondsSince(start);
 
@@ -158,10 +166,11 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, con
   ChosenViews chosen = ChooseViews(mesh, adjacency, views, raycaster, source, options);
   summary.seconds_visibility = chosen.seconds_visibility;
   summary.seconds_selection = chosen.seconds_selection;
+  summary.levelling = chosen.levelling;
   TexturedMesh& textured = result.textured;
   textured.mesh = mesh;
-  BakeLabelledFaces(mesh, adjacency, views, raycaster, source, chosen.candidates, chosen.selection.view_of_face, options,
-                    /*show_progress=*/true, textured, summary);
+  BakeLabelledFaces(mesh, adjacency, views, raycaster, source, chosen.candidates, chosen.selection.view_of_face,
+                    chosen.corrections, /*source_vertex=*/{}, options, /*show_progress=*/true, textured, summary);
   summary.num_textured_faces = textured.NumTexturedFaces();
   summary.seams = MeasureSeamVisibility(textured, adjacency);
   result.view_of_face = std::move(chosen.selection.view_of_face);
@@ -197,8 +206,8 @@ TexturedMesh BakeFaces(const Mesh& mesh, const std::vector<TextureView>& views, 
     }
     view_of_face[i] = labels[faces[i]];
   }
-  BakeLabelledFaces(textured.mesh, adjacency, views, raycaster, source, candidates, view_of_face, options,
-                    /*show_progress=*/false, textured, summary);
+  BakeLabelledFaces(textured.mesh, adjacency, views, raycaster, source, candidates, view_of_face, chosen.corrections,
+                    source_vertex, options, /*show_progress=*/false, textured, summary);
   summary.num_views = views.size();
   summary.num_faces += faces.size();
   summary.num_textured_faces += textured.NumTexturedFaces();

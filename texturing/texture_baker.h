@@ -4,10 +4,12 @@
 //
 //   1. visibility and quality of every (face, view) pair        face_view_candidates.h   (one pass over views)
 //   2. one view per face: MRF, loopy belief propagation          view_selection.h
+//      and a colour correction per (vertex, view) for the seams   seam_levelling.h         (one pass over views)
 //   3. charts of faces with the same view, projected into it     texture_charts.h
 //   4. charts packed into atlas pages                            atlas_packing.h
 //   5. texels tied to surface points, borders included           texel_layout.h
-//   6. texel colours fused from all views that see them          texel_fusion.h           (passes over views)
+//   6. texel colours fused from all views that see them,         texel_fusion.h           (passes over views)
+//      plus the seam correction
 //   7. padding and unseen texels filled by pull-push             texture_fill.h
 //   8. the colour step across chart borders, for the summary     seam_visibility.h
 //
@@ -20,6 +22,7 @@
 #include "lib/geometry/mesh.h"
 #include "lib/raycast/raycast_scene.h"
 #include "texturing/face_view_candidates.h"
+#include "texturing/seam_levelling.h"
 #include "texturing/seam_visibility.h"
 #include "texturing/texel_fusion.h"
 #include "texturing/texture_charts.h"
@@ -34,6 +37,7 @@ struct TextureBakingOptions {
   ViewSelectionOptions selection;
   TextureChartOptions charts;
   TexelFusionOptions fusion;
+  SeamLevellingOptions levelling;
   // Border texels (outside every triangle of a chart) within this distance of a triangle show its
   // nearest point; further padding is filled by pull-push.
   double gutter = 2.0;
@@ -58,6 +62,7 @@ struct TextureBakingSummary {
   std::size_t page_texels = 0;  // all texels of all pages
   ViewSelection selection;      // without the per-face labels
   TexelFusionSummary fusion;
+  SeamLevellingSummary levelling;
   SeamVisibility seams;
   double seconds_visibility = 0.0;
   double seconds_selection = 0.0;
@@ -72,12 +77,14 @@ struct TextureBakingResult {
   TextureBakingSummary summary;
 };
 
-// Steps 1 and 2 over the whole mesh: the candidate views of every face and the view the MRF chose for it.
-// A tiled bake chooses once and bakes each tile's faces with BakeFaces, so that labels, and the colours
-// fused from them, agree across tile borders.
+// Steps 1 and 2 over the whole mesh: the candidate views of every face, the view the MRF chose for it and
+// the seam levelling's corrections. A tiled bake chooses once and bakes each tile's faces with BakeFaces,
+// so that labels, and the colours fused and levelled from them, agree across tile borders.
 struct ChosenViews {
   FaceViewCandidates candidates;
   ViewSelection selection;  // with the per-face labels
+  SeamCorrections corrections;
+  SeamLevellingSummary levelling;
   double seconds_visibility = 0.0;
   double seconds_selection = 0.0;
 };

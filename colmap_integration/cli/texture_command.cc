@@ -76,6 +76,9 @@ void AddViewFusionOptions(OptionParser& parser, TextureBakingOptions* baking) {
                    "Potts weight between adjacent faces from different views (0 = best view per face).");
   parser.AddInt("max-views-per-face", &baking->visibility.max_views_per_face,
                 "Best views kept per face for selection and fusion.");
+  parser.AddFlag("seam-levelling", &baking->levelling.enabled,
+                 "Level the colours where charts of different images meet (Lempitsky & Ivanov): a smooth\n"
+                 "      correction per vertex and image, solved over the whole mesh; --no-seam-levelling: off.");
 }
 
 }  // namespace lutex

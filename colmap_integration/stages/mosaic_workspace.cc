@@ -174,7 +174,8 @@ void PrintMosaicSummary(std::ostream& out, const MosaicSummary& summary) {
   out << std::setprecision(1) << "  cells: " << 100.0 * double(mosaic.surface_cells) / cells << " % over the surface, "
       << 100.0 * double(mosaic.seen_cells) / cells << " % seen (" << std::setprecision(2) << mosaic.mean_samples_per_cell
       << " views per cell); " << mosaic.num_tiles << " tile(s), " << mosaic.tile_view_reads << " image reads\n";
-  out << std::setprecision(1) << "  time: visibility and view selection " << mosaic.seconds_selection << " s, tiles "
+  out << "  seam levelling: " << DescribeSeamLevelling(mosaic.levelling) << "\n";
+  out << std::setprecision(1) << "  time: visibility, view selection and seam levelling " << mosaic.seconds_selection << " s, tiles "
       << mosaic.seconds_tiles << " s\n";
   out << "  images: " << summary.images.string() << "\n"
       << "  confidence: " << (summary.confidence.empty() ? std::string("not used") : summary.confidence.string()) << "\n";

@@ -101,14 +101,16 @@ void PrintTextureSummary(std::ostream& out, const TextureSummary& summary) {
             << "  fusion: " << baking.fusion.mean_samples_per_texel << " views per texel, "
             << baking.fusion.rejected_samples << " outlier samples rejected, " << baking.fusion.texels_without_samples
             << " texels seen by no view, " << baking.fusion.num_passes << " pass(es)\n"
+            << "  seam levelling: " << DescribeSeamLevelling(baking.levelling) << "\n"
             << std::setprecision(2) << "  seams: " << baking.seams.num_seam_edges << " chart-border edges; colour step "
             << 100.0 * baking.seams.seam_step << " % of full scale across them, " << 100.0 * baking.seams.interior_step
             << " % inside charts\n"
             << std::setprecision(1) << "  time: visibility " << baking.seconds_visibility << " s, view selection "
-            << baking.seconds_selection << " s, charts and atlas " << baking.seconds_layout << " s, colours "
-            << baking.seconds_fusion << " s, writing "
-            << summary.seconds - baking.seconds_visibility - baking.seconds_selection - baking.seconds_layout -
-                   baking.seconds_fusion
+            << baking.seconds_selection << " s, seam levelling " << baking.levelling.seconds
+            << " s, charts and atlas " << baking.seconds_layout << " s, colours " << baking.seconds_fusion
+            << " s, writing "
+            << summary.seconds - baking.seconds_visibility - baking.seconds_selection - baking.levelling.seconds -
+                   baking.seconds_layout - baking.seconds_fusion
             << " s (incl. reading the mesh)\n"
             << "  images: " << summary.images.string() << "\n"
             << "  confidence: " << (summary.confidence.empty() ? std::string("not used") : summary.confidence.string())

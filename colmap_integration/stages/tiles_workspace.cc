@@ -214,7 +214,8 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   const FaceAdjacency adjacency(dive.mesh());
   const ChosenViews chosen =
       ChooseViews(dive.mesh(), adjacency, found.views, ViewRaycaster(dive.scene()), source, options.baking);
-  summary.seconds_views = chosen.seconds_visibility + chosen.seconds_selection;
+  summary.seconds_views = chosen.seconds_visibility + chosen.seconds_selection + chosen.levelling.seconds;
+  summary.levelling = chosen.levelling;
 
   AtomicOutputFile folder(output);
   fs::create_directories(folder.temporary_path());
@@ -263,7 +264,8 @@ void PrintTilesSummary(std::ostream& out, const TilesSummary& summary) {
       << summary.max_tile_faces << " in one tile\n"
       << std::setprecision(4) << "  texel size of the leaves: " << summary.leaf_texel_size
       << " (median); root geometric error " << summary.root_geometric_error << "\n"
-      << std::setprecision(1) << "  time: view selection over the whole mesh " << summary.seconds_views << " s\n"
+      << "  seam levelling: " << DescribeSeamLevelling(summary.levelling) << "\n"
+      << std::setprecision(1) << "  time: views and seam levelling over the whole mesh " << summary.seconds_views << " s\n"
       << "  images: " << summary.images.string() << "\n"
       << "  georeference: " << summary.georeference.georeference.Describe() << " from " << summary.georeference.source
       << (summary.georeference.georeference.IsSet() ? " (the root transform places the tiles on the globe)\n"

@@ -61,7 +61,8 @@ struct TilesSummary {
   double leaf_texel_size = 0.0;     // median over the leaves, scene units
   ModelUp up;
   WorkspaceGeoreference georeference;
-  double seconds_views = 0.0;       // visibility and view selection over the whole mesh
+  double seconds_views = 0.0;       // visibility, view selection and seam levelling over the whole mesh
+  SeamLevellingSummary levelling;
   double seconds = 0.0;
 };
 

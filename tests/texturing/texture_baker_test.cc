@@ -164,6 +164,47 @@ TEST_F(TextureBakerTest, FusionRejectsAParticleThatOneViewSees) {
   EXPECT_GT(fused.summary.fusion.rejected_samples, clean.summary.fusion.rejected_samples);
 }
 
+TEST_F(TextureBakerTest, SeamLevellingRemovesTheStepsBetweenViewsThatDisagree) {
+  // Each view a few percent too bright or too dark (restored images of a dive disagree like this: strobe
+  // power, a LUT's error that depends on range): with one view per face, every chart border between two
+  // views is a step.
+  for (std::size_t v = 0; v < images_.size(); ++v) images_[v] *= 1.0 + 0.12 * std::sin(2.0 * double(v) + 0.5);
+  const auto bake = [&](TexelBlend blend, bool level) {
+    TextureBakingOptions options;
+    options.fusion.blend = blend;
+    options.levelling.enabled = level;
+    return BakeTexture(scene_.mesh, scene_.views, source_, options);
+  };
+  const auto error = [&](const TextureBakingResult& result) {
+    double sum = 0.0;
+    for (const TextureView& view : scene_.views) {
+      sum += CompareThroughView(raycaster_, view, result.textured, Eigen::Vector2d::Zero(), 0.0).mean;
+    }
+    return sum / double(scene_.views.size());
+  };
+  const TextureBakingResult plain = bake(TexelBlend::kSingle, false);
+  const TextureBakingResult levelled = bake(TexelBlend::kSingle, true);
+  EXPECT_FALSE(plain.summary.levelling.enabled);
+  ASSERT_GT(levelled.summary.levelling.num_seam_points, 100u);
+  // The seam steps the levelling saw, before and after its corrections...
+  EXPECT_GT(levelled.summary.levelling.step_before, 0.01);
+  EXPECT_LT(levelled.summary.levelling.step_after, 0.25 * levelled.summary.levelling.step_before);
+  // ... and in the texture, measured independently (each side through its own texture coordinates).
+  EXPECT_GT(plain.summary.seams.Excess(), 0.01);
+  EXPECT_LT(levelled.summary.seams.Excess(), 0.3 * plain.summary.seams.Excess());
+  // The charts move towards each other, not away from the truth: the error against the true albedo
+  // (whose scale no view knows better than the others) does not grow.
+  EXPECT_LT(error(levelled), 1.05 * error(plain));
+
+  // Fused, both sides of a border mix the same views: there is hardly a step, and levelling leaves it so.
+  const TextureBakingResult fused = bake(TexelBlend::kFuse, false);
+  const TextureBakingResult fused_levelled = bake(TexelBlend::kFuse, true);
+  EXPECT_LT(fused_levelled.summary.levelling.step_before, 0.1 * levelled.summary.levelling.step_before);
+  EXPECT_LT(fused_levelled.summary.levelling.step_after, fused_levelled.summary.levelling.step_before + 0.001);
+  EXPECT_LT(fused_levelled.summary.seams.Excess(), std::max(fused.summary.seams.Excess(), 0.0) + 0.002);
+  EXPECT_LT(error(fused_levelled), 1.05 * error(fused));
+}
+
 TEST_F(TextureBakerTest, TheResultDoesNotDependOnThreadsOrMemoryLimit) {
   TextureBakingOptions options;
   options.num_threads = 1;

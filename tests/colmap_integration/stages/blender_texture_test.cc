@@ -106,29 +106,41 @@ TEST_F(BlenderTexture, RestoredAndFusedTexturesAreTrueAndSeamless) {
     const char* name;
     fs::path images;
     TexelBlend blend;
+    bool level;  // seam levelling
     testing::RenderBack back;
     double seam_step = 0.0;  // seam visibility: the step across chart borders less that inside charts, pp
   };
-  std::vector<Variant> variants = {{"restored, fused", dir.path() / "restored", TexelBlend::kFuse, {}, 0.0},
-                                   {"restored, one view per face", dir.path() / "restored", TexelBlend::kSingle, {}, 0.0},
-                                   {"unrestored, fused", survey_ / "images", TexelBlend::kFuse, {}, 0.0}};
+  const fs::path restored = dir.path() / "restored";
+  std::vector<Variant> variants = {{"restored, fused", restored, TexelBlend::kFuse, true, {}, 0.0},
+                                   {"restored, one view per face", restored, TexelBlend::kSingle, true, {}, 0.0},
+                                   {"unrestored, fused", survey_ / "images", TexelBlend::kFuse, true, {}, 0.0},
+                                   {"restored, fused, unlevelled", restored, TexelBlend::kFuse, false, {}, 0.0},
+                                   {"restored, one view, unlevelled", restored, TexelBlend::kSingle, false, {}, 0.0}};
   for (Variant& variant : variants) {
     TextureOptions options = Texturing(variant.images, ImageEncoding::kLinear16, dir.path() / "model.ply");
     options.baking.fusion.blend = variant.blend;
+    options.baking.levelling.enabled = variant.level;
     const TextureSummary summary = TextureWorkspace(options);
     variant.back = testing::CompareWithGroundTruth(survey_, testing::ReadTexturedPly(dir.path() / "model.ply"));
     variant.seam_step = 100.0 * summary.baking.seams.Excess();
-    std::printf("%-28s rendered back MAE %5.2f pp; colour step across %zu chart borders %.2f pp, inside charts "
-                "%.2f pp: seam %.2f pp\n",
+    std::printf("%-31s rendered back MAE %5.2f pp; colour step across %zu chart borders %.2f pp, inside charts "
+                "%.2f pp: seam %.2f pp; levelling: %s\n",
                 variant.name, variant.back.mae, summary.baking.seams.num_seam_edges,
-                100.0 * summary.baking.seams.seam_step, 100.0 * summary.baking.seams.interior_step, variant.seam_step);
+                100.0 * summary.baking.seams.seam_step, 100.0 * summary.baking.seams.interior_step, variant.seam_step,
+                DescribeSeamLevelling(summary.baking.levelling).c_str());
   }
   // Restoration is what makes the texture true (raw images carry the lights and the water).
   EXPECT_LT(variants[0].back.mae, 5.0);  // the restored images themselves are at 3.8 (boards + pure water)
   EXPECT_LT(variants[0].back.mae, 0.3 * variants[2].back.mae);
   // Fusing all views hides the seams that one view per face leaves (the restored views still differ by
   // a few percent). Unrestored images are dark under water, so their steps are small in absolute terms.
-  EXPECT_LT(variants[0].seam_step, 0.6 * variants[1].seam_step);
+  EXPECT_LT(variants[3].seam_step, 0.6 * variants[4].seam_step);
+  // Seam levelling removes about half of what one view per face leaves, and keeps the fused texture as it was
+  // (nearly seamless already), without moving either away from the true albedo.
+  EXPECT_LT(variants[1].seam_step, 0.7 * variants[4].seam_step);
+  EXPECT_LT(variants[0].seam_step, variants[3].seam_step + 0.05);
+  EXPECT_LT(variants[0].back.mae, variants[3].back.mae + 0.05);
+  EXPECT_LT(variants[1].back.mae, variants[4].back.mae + 0.05);
 }
 
 }  // namespace
