@@ -154,6 +154,65 @@ double AlbedoError(const std::vector<fs::path>& glbs, const Mesh& mesh) {
   return 100.0 * sum / double(std::max<std::size_t>(count, 1));
 }
 
+// The colour step (percentage points, mean over channels) across every edge that two textured leaf
+// triangles share: each side sampled through its own tile's texture at a quarter, half and three quarters
+// along the edge, a tenth of the way towards its opposite corner. Edges between two leaves (tile borders)
+// apart from edges inside one leaf (whose steps are the texture's own detail, and its chart borders).
+struct EdgeSteps {
+  double tile_borders = 0.0, inside_tiles = 0.0;
+  std::size_t border_edges = 0, inside_edges = 0;
+};
+EdgeSteps StepsAcrossEdges(const std::vector<fs::path>& leaves) {
+  using Key = std::tuple<long long, long long, long long>;
+  const auto key = [](const Eigen::Vector3d& p) {
+    return Key(std::llround(p.x() * 1e4), std::llround(p.y() * 1e4), std::llround(p.z() * 1e4));
+  };
+  std::vector<testing::GlbTriangles> tiles;
+  for (const fs::path& leaf : leaves) tiles.push_back(testing::ReadGlbTriangles(leaf));
+  struct Side {
+    std::size_t tile, triangle;
+    int corner;  // the edge runs from this corner to the next
+  };
+  std::map<std::pair<Key, Key>, std::vector<Side>> sides_of_edge;
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    for (std::size_t t = 0; t < tiles[i].corners_in_model.size(); ++t) {
+      if (tiles[i].triangle_image[t] < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Key a = key(tiles[i].corners_in_model[t][k]), b = key(tiles[i].corners_in_model[t][(k + 1) % 3]);
+        sides_of_edge[std::minmax(a, b)].push_back({i, t, k});
+      }
+    }
+  }
+  const auto colour = [&](const Side& side, const Key& start, double along) {
+    const testing::GlbTriangles& tile = tiles[side.tile];
+    const int i = side.corner, j = (side.corner + 1) % 3, o = (side.corner + 2) % 3;
+    if (key(tile.corners_in_model[side.triangle][i]) != start) along = 1.0 - along;
+    std::array<double, 3> b{};
+    b[i] = 0.9 * (1.0 - along);
+    b[j] = 0.9 * along;
+    b[o] = 0.1;
+    return tile.AlbedoAt(side.triangle, b[1], b[2]);
+  };
+  EdgeSteps steps;
+  for (const auto& [edge, sides] : sides_of_edge) {
+    if (sides.size() != 2) continue;
+    double step = 0.0;
+    for (double along : {0.25, 0.5, 0.75}) {
+      step += 100.0 * (colour(sides[0], edge.first, along) - colour(sides[1], edge.first, along)).cwiseAbs().mean() / 3.0;
+    }
+    if (sides[0].tile != sides[1].tile) {
+      steps.tile_borders += step;
+      ++steps.border_edges;
+    } else {
+      steps.inside_tiles += step;
+      ++steps.inside_edges;
+    }
+  }
+  steps.tile_borders /= double(std::max<std::size_t>(steps.border_edges, 1));
+  steps.inside_tiles /= double(std::max<std::size_t>(steps.inside_edges, 1));
+  return steps;
+}
+
 TEST(Tiles, ATilesetOfTheSurveyFollowsTheRulesAndKeepsTheColoursOfTheSingleBake) {
   testing::TempDir dir;
   const TilesSummary summary = TilesWorkspace(OptionsFor(dir.path() / "tiles", 2));
@@ -192,6 +251,13 @@ TEST(Tiles, ATilesetOfTheSurveyFollowsTheRulesAndKeepsTheColoursOfTheSingleBake)
   std::cout << "albedo error at face centroids: tiles " << tiled << " pp, single GLB " << single << " pp\n";
   EXPECT_LT(tiled, 3.0);
   EXPECT_NEAR(tiled, single, 0.1);
+
+  // A tile border is not a seam: the colour steps across it are those inside the tiles.
+  const EdgeSteps steps = StepsAcrossEdges(check.leaf_contents);
+  std::cout << "colour step across " << steps.border_edges << " tile-border edges " << steps.tile_borders
+            << " pp, across " << steps.inside_edges << " edges inside tiles " << steps.inside_tiles << " pp\n";
+  EXPECT_GT(steps.border_edges, 50u);
+  EXPECT_LT(steps.tile_borders, steps.inside_tiles + 0.2);
 }
 
 TEST(Tiles, TheFilesDoNotDependOnTheThreadCount) {
