@@ -21,6 +21,7 @@ namespace {
 constexpr std::array<float, 3> kEdgePositions{0.25f, 0.5f, 0.75f};
 constexpr double kInvisibleStep = 0.002;
 constexpr int kRobustRounds = 3;
+constexpr double kFadeLengths = 4.0;
 // Seam points fused per pseudo-page (the fusion writes into pages; these are 4096 wide).
 constexpr int kPageSide = 4096;
 
@@ -154,11 +155,29 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     return Eigen::Vector3d(c[0], c[1], c[2]);
   };
 
-  // The unknowns: (vertex, view) for the views of the faces around each vertex.
+  // The vertices a correction reaches: within kFadeLengths fade lengths, sqrt(smoothness / fade) edges, of
+  // a seam (beyond, it would be below e^-kFadeLengths of the seam's; it is 0 there). All with fade 0.
+  const std::uint8_t reach =
+      options.fade > 0.0
+          ? static_cast<std::uint8_t>(std::min(250.0, std::ceil(kFadeLengths * std::sqrt(options.smoothness / options.fade))))
+          : std::uint8_t{254};
+  std::vector<std::uint8_t> ring(mesh.vertices.size(), 255);
+  for (const SeamPoint& point : points) ring[point.p] = ring[point.q] = 0;
+  for (std::uint8_t r = 1; r <= reach && options.fade > 0.0; ++r) {
+    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+      if (view_of_face[f] == kNoView) continue;
+      const Mesh::Face& face = mesh.faces[f];
+      if (std::min({ring[face[0]], ring[face[1]], ring[face[2]]}) != r - 1) continue;
+      for (std::uint32_t v : face) ring[v] = std::min(ring[v], r);
+    }
+  }
+  const auto reached = [&](std::uint32_t v) { return options.fade == 0.0 || ring[v] <= reach; };
+
+  // The unknowns: (vertex, view) for the views of the faces around each vertex reached.
   corrections.offsets_.assign(mesh.vertices.size() + 1, 0);
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
     if (view_of_face[f] == kNoView) continue;
-    for (std::uint32_t v : mesh.faces[f]) ++corrections.offsets_[v + 1];
+    for (std::uint32_t v : mesh.faces[f]) corrections.offsets_[v + 1] += reached(v);
   }
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) corrections.offsets_[v + 1] += corrections.offsets_[v];
   {
@@ -166,7 +185,9 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     std::vector<std::uint32_t> all_views(corrections.offsets_.back());
     for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
       if (view_of_face[f] == kNoView) continue;
-      for (std::uint32_t v : mesh.faces[f]) all_views[fill[v]++] = view_of_face[f];
+      for (std::uint32_t v : mesh.faces[f]) {
+        if (reached(v)) all_views[fill[v]++] = view_of_face[f];
+      }
     }
     // Distinct views per vertex, compacted in place of the counts.
     std::uint32_t kept = 0;
@@ -182,7 +203,9 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     corrections.views_ = std::move(all_views);
   }
   const std::size_t n = corrections.views_.size();
+  // The unknown of (vertex, view), -1 for a vertex the corrections do not reach.
   const auto index = [&](std::uint32_t vertex, std::uint32_t view) {
+    if (!reached(vertex)) return -1;
     const auto begin = corrections.views_.begin() + corrections.offsets_[vertex];
     const auto end = corrections.views_.begin() + corrections.offsets_[vertex + 1];
     return static_cast<int>(std::lower_bound(begin, end, view) - corrections.views_.begin());
@@ -231,7 +254,10 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   Eigen::VectorXi entries_per_column = Eigen::VectorXi::Ones(static_cast<Eigen::Index>(n));
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
     if (view_of_face[f] == kNoView) continue;
-    for (std::uint32_t v : mesh.faces[f]) entries_per_column[index(v, view_of_face[f])] += 2;
+    for (std::uint32_t v : mesh.faces[f]) {
+      const int u = index(v, view_of_face[f]);
+      if (u >= 0) entries_per_column[u] += 2;
+    }
   }
   for (const auto& unknowns : point_unknowns) {
     for (int u : unknowns) entries_per_column[u] += 4;
@@ -247,11 +273,14 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
       if (view_of_face[f] == kNoView) continue;
       const Mesh::Face& face = mesh.faces[f];
       for (int k = 0; k < 3; ++k) {
+        // An edge to a vertex the corrections do not reach ties the other end to 0.
         const int i = index(face[k], view_of_face[f]), j = index(face[(k + 1) % 3], view_of_face[f]);
-        normal.coeffRef(i, i) += options.smoothness;
-        normal.coeffRef(j, j) += options.smoothness;
-        normal.coeffRef(i, j) -= options.smoothness;
-        normal.coeffRef(j, i) -= options.smoothness;
+        if (i >= 0) normal.coeffRef(i, i) += options.smoothness;
+        if (j >= 0) normal.coeffRef(j, j) += options.smoothness;
+        if (i >= 0 && j >= 0) {
+          normal.coeffRef(i, j) -= options.smoothness;
+          normal.coeffRef(j, i) -= options.smoothness;
+        }
       }
     }
     for (std::size_t i = 0; i < point_step.size(); ++i) {

@@ -30,9 +30,10 @@
 // whole mesh's, so the tiles of a tiled bake, which keep the views chosen for the whole mesh, are
 // levelled alike and their borders stay seamless; the orthomosaic's cells get the same corrections.
 //
-// Memory: the sparse normal matrix (about 7 entries per vertex) and the seam points (3 per seam edge);
-// time: one pass over the views plus the solves (single-threaded, so the result does not depend on the
-// thread count).
+// Only the vertices within 4 fade lengths of a seam (in edges) get unknowns: beyond, a correction would
+// be below e^-4 of the seam's, and it is 0. Memory: the sparse normal matrix (about 15 entries per
+// unknown), the seam points (3 per seam edge) and a byte per vertex; time: one pass over the views plus
+// the solves (single-threaded, so the result does not depend on the thread count).
 
 #include <cstdint>
 #include <string>
@@ -62,7 +63,7 @@ struct SeamLevellingOptions {
 struct SeamLevellingSummary {
   bool enabled = false;
   std::size_t num_seam_points = 0;  // seam points seen from both sides
-  std::size_t num_unknowns = 0;     // (vertex, view) pairs
+  std::size_t num_unknowns = 0;     // (vertex, view) pairs near the seams
   int iterations = 0;               // conjugate-gradient iterations, the most over the channels
   double step_before = 0.0;         // mean |c_a - c_b| over seam points and channels, linear albedo
   double step_after = 0.0;          // the same with the corrections
