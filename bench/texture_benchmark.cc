@@ -15,6 +15,7 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
+#include "bench/bench_texture.h"
 #include "bench/measure_in_child.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/stages/texture_workspace.h"
@@ -48,15 +49,8 @@ Measurement Texture(const fs::path& workspace, int num_threads) {
   using namespace lutex;
   Measurement measurement;
   measurement.decode_seconds = bench::DecodeSeconds(workspace, num_threads);
-  TextureOptions options;
-  options.workspace = workspace;
-  options.mesh = workspace / "scene" / "mesh.ply";
-  options.views.images = workspace / "images";
-  options.output = workspace / "model.glb";
-  options.baking.num_threads = num_threads;
-  const auto start = std::chrono::steady_clock::now();
-  const TextureSummary summary = TextureWorkspace(options);
-  measurement.seconds = bench::SecondsSince(start);
+  const TextureSummary summary =
+      bench::TextureOwnImages(workspace, workspace / "model.glb", num_threads, &measurement.seconds);
   measurement.texels = static_cast<double>(summary.baking.page_texels);
   measurement.faces = static_cast<double>(summary.baking.num_faces);
   return measurement;

@@ -19,6 +19,7 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
+#include "bench/bench_texture.h"
 #include "bench/measure_in_child.h"
 #include "colmap_integration/io/workspace.h"
 #include "colmap_integration/stages/loaded_dive.h"
@@ -127,15 +128,7 @@ Stages MeasureStages(const fs::path& workspace, int num_threads) {
 Stages MeasureWhole(const fs::path& workspace, int num_threads) {
   using namespace lutex;
   Stages stages;
-  TextureOptions options;
-  options.workspace = workspace;
-  options.mesh = workspace / "scene" / "mesh.ply";
-  options.views.images = workspace / "images";
-  options.output = workspace.parent_path() / "whole.glb";
-  options.baking.num_threads = num_threads;
-  const auto start = std::chrono::steady_clock::now();
-  TextureWorkspace(options);
-  stages.total_seconds = bench::SecondsSince(start);
+  bench::TextureOwnImages(workspace, workspace.parent_path() / "whole.glb", num_threads, &stages.total_seconds);
   return stages;
 }
 

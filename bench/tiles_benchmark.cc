@@ -16,6 +16,7 @@
 
 #include "bench/bench_dive.h"
 #include "bench/bench_options.h"
+#include "bench/bench_texture.h"
 #include "bench/measure_in_child.h"
 #include "colmap_integration/stages/texture_workspace.h"
 #include "colmap_integration/stages/tiles_workspace.h"
@@ -71,16 +72,9 @@ Measurement Tiles(const fs::path& workspace, std::size_t tile_faces, int num_thr
 
 Measurement Texture(const fs::path& workspace, int num_threads) {
   using namespace lutex;
-  TextureOptions options;
-  options.workspace = workspace;
-  options.mesh = workspace / "scene" / "mesh.ply";
-  options.views.images = workspace / "images";
-  options.output = workspace.parent_path() / "model.glb";
-  options.baking.num_threads = num_threads;
-  const auto start = std::chrono::steady_clock::now();
-  const TextureSummary summary = TextureWorkspace(options);
   Measurement measurement;
-  measurement.seconds = bench::SecondsSince(start);
+  const TextureSummary summary =
+      bench::TextureOwnImages(workspace, workspace.parent_path() / "model.glb", num_threads, &measurement.seconds);
   measurement.tiles = 1.0;
   measurement.faces = double(summary.baking.num_faces);
   return measurement;
