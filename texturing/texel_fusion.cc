@@ -8,6 +8,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+#include <Eigen/Geometry>
 
 #include "lib/util/parallel_for.h"
 #include "lib/util/progress.h"
@@ -95,15 +98,47 @@ Eigen::Vector3f Blend(const TexelSamples& texel, std::uint32_t chosen_view, Texe
   return weight > 0.0f ? Eigen::Vector3f(sum / weight) : reference;
 }
 
-// Samples `view` at the texels of `faces` into `samples` (indexed from `first_texel`).
+// A face a pass samples, and where its texels' samples start in the pass's buffer.
+struct PassFace {
+  std::uint32_t face = 0;
+  std::size_t first_sample = 0;
+};
+
+// The pixels of `view` that sampling `faces` can read: the bounding box of their corners' projections,
+// with a margin for the bilinear footprint and for a distortion that bows an edge outwards. The whole
+// image when a corner is behind the camera.
+cv::Rect SampledWindow(const Mesh& mesh, const TextureView& view, const std::vector<PassFace>& faces) {
+  constexpr double kMargin = 4.0;
+  const cv::Rect image(0, 0, static_cast<int>(view.camera.width), static_cast<int>(view.camera.height));
+  double min_u = std::numeric_limits<double>::infinity(), min_v = min_u;
+  double max_u = -min_u, max_v = -min_u;
+  for (const PassFace& pass_face : faces) {
+    for (const std::uint32_t vertex : mesh.faces[pass_face.face]) {
+      const Eigen::Vector3d point_in_cam = view.cam_from_world * mesh.vertices[vertex];
+      if (!(point_in_cam.z() > 0.0)) return image;
+      const Eigen::Vector2d pixel = view.camera.ImgFromCam(point_in_cam);
+      if (!pixel.allFinite()) return image;
+      min_u = std::min(min_u, pixel.x());
+      max_u = std::max(max_u, pixel.x());
+      min_v = std::min(min_v, pixel.y());
+      max_v = std::max(max_v, pixel.y());
+    }
+  }
+  if (!(max_u >= min_u)) return cv::Rect();
+  const auto clamp = [](double value, int high) { return static_cast<int>(std::clamp(value, 0.0, double(high))); };
+  const int col0 = clamp(std::floor(min_u - kMargin), image.width), row0 = clamp(std::floor(min_v - kMargin), image.height);
+  const int col1 = clamp(std::ceil(max_u + kMargin), image.width), row1 = clamp(std::ceil(max_v + kMargin), image.height);
+  return cv::Rect(col0, row0, col1 - col0, row1 - row0);
+}
+
+// Samples `view` at the texels of `faces` into `samples`. `maps` may be a window of the view.
 void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_index, const GeometryMaps& maps,
-                const cv::Mat& colour, const cv::Mat& confidence, const std::vector<std::uint32_t>& faces,
-                const TexelLayout& layout, std::size_t first_texel, std::vector<TexelSamples>& samples,
-                std::vector<std::mutex>& locks) {
+                const cv::Mat& colour, const cv::Mat& confidence, const std::vector<PassFace>& faces,
+                const TexelLayout& layout, std::vector<TexelSamples>& samples, std::vector<std::mutex>& locks) {
   const double focal = 0.5 * (view.camera.FocalLengthX() + view.camera.FocalLengthY());
   const double depth_tolerance = 0.01 + 2.0 / focal;  // relative: 1 % plus two pixels' slope at 45 degrees
   const Eigen::Vector3d centre_in_world = view.cam_from_world.TargetOriginInSource();
-  for (std::uint32_t face : faces) {
+  for (const auto& [face, first_sample] : faces) {
     const Mesh::Face& corners = mesh.faces[face];
     const Eigen::Vector3d& v0 = mesh.vertices[corners[0]];
     const Eigen::Vector3d& v1 = mesh.vertices[corners[1]];
@@ -126,9 +161,10 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
       for (int dr = 0; dr <= 1; ++dr) {
         for (int dc = 0; dc <= 1; ++dc) {
           const int col = col0 + dc, row = row0 + dr;
-          if (col < 0 || row < 0 || col >= colour.cols || row >= colour.rows) continue;
+          const int map_col = col - maps.origin.x, map_row = row - maps.origin.y;
+          if (map_col < 0 || map_row < 0 || map_col >= maps.depth.cols || map_row >= maps.depth.rows) continue;
           const double w = (dc ? fu : 1.0 - fu) * (dr ? fv : 1.0 - fv);
-          const float depth = maps.depth.at<float>(row, col);
+          const float depth = maps.depth.at<float>(map_row, map_col);
           if (w <= 0.0 || !(std::abs(depth - point_in_cam.z()) <= depth_tolerance * point_in_cam.z())) continue;
           const cv::Vec3f& value = colour.at<cv::Vec3f>(row, col);
           colour_sum += w * Eigen::Vector3d(value[0], value[1], value[2]);
@@ -149,9 +185,63 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
       sample.weight = static_cast<float>(confidence_sum / weight_sum * cos_angle * resolution);
       sample.view = view_index;
       if (!(sample.weight > 0.0f) || !sample.colour.allFinite()) continue;
-      samples[t - first_texel].Offer(sample);
+      samples[first_sample + (t - begin)].Offer(sample);
     }
   }
+}
+
+// The charts of each pass over the views, at most `texels_per_pass` texels each (a larger chart is a
+// pass of its own). Charts are taken in the order of their place on the surface (a Morton curve through
+// their centroids in the mesh's bounds), so a pass covers one part of the surface: it reads only the
+// views that see that part, and casts only the part of each view that shows it (SampledWindow).
+std::vector<std::vector<std::size_t>> PlanPasses(const Mesh& mesh, const TexelLayout& layout,
+                                                 std::size_t texels_per_pass) {
+  const std::size_t num_charts = layout.chart_offsets.size() - 1;
+  if (num_charts == 0) return {};
+  if (layout.texels.size() <= texels_per_pass) {
+    std::vector<std::size_t> all(num_charts);
+    for (std::size_t c = 0; c < num_charts; ++c) all[c] = c;
+    return {all};
+  }
+  Eigen::AlignedBox3d bounds;
+  for (const Eigen::Vector3d& vertex : mesh.vertices) bounds.extend(vertex);
+  const Eigen::Vector3d extent = bounds.sizes().cwiseMax(1e-12);
+  std::vector<std::pair<std::uint64_t, std::size_t>> order;  // (Morton code of the centroid, chart)
+  order.reserve(num_charts);
+  for (std::size_t c = 0; c < num_charts; ++c) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    std::size_t count = 0;
+    for (std::size_t t = layout.chart_offsets[c]; t < layout.chart_offsets[c + 1];) {
+      const std::uint32_t face = layout.texels[t].face;
+      const std::size_t end = layout.face_ranges[face].second;
+      for (const std::uint32_t vertex : mesh.faces[face]) centroid += double(end - t) * mesh.vertices[vertex];
+      count += 3 * (end - t);
+      t = end;
+    }
+    std::uint64_t code = 0;
+    if (count > 0) {
+      const Eigen::Vector3d cell = ((centroid / double(count) - bounds.min()).cwiseQuotient(extent) * 1023.0)
+                                       .cwiseMax(0.0)
+                                       .cwiseMin(1023.0);
+      for (int bit = 9; bit >= 0; --bit) {
+        for (int axis = 0; axis < 3; ++axis) code = (code << 1) | ((static_cast<std::uint64_t>(cell[axis]) >> bit) & 1u);
+      }
+    }
+    order.emplace_back(code, c);
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<std::vector<std::size_t>> passes;
+  std::size_t texels_in_pass = 0;
+  for (const auto& [code, chart] : order) {
+    const std::size_t texels = layout.chart_offsets[chart + 1] - layout.chart_offsets[chart];
+    if (passes.empty() || texels_in_pass + texels > texels_per_pass) {
+      passes.emplace_back();
+      texels_in_pass = 0;
+    }
+    passes.back().push_back(chart);
+    texels_in_pass += texels;
+  }
+  return passes;
 }
 
 }  // namespace
@@ -170,38 +260,35 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
   summary.num_texels = layout.texels.size();
   const std::size_t texels_per_pass =
       std::max<std::size_t>(1, options.memory_limit_bytes / sizeof(TexelSamples));
-  // Passes cover whole charts; a chart larger than the limit is a pass of its own.
-  std::vector<std::pair<std::size_t, std::size_t>> passes;  // chart ranges
-  const std::size_t num_charts = layout.chart_offsets.size() - 1;
-  for (std::size_t c = 0; c < num_charts;) {
-    std::size_t d = c + 1;
-    while (d < num_charts && layout.chart_offsets[d + 1] - layout.chart_offsets[c] <= texels_per_pass) ++d;
-    passes.emplace_back(c, d);
-    c = d;
-  }
+  const std::vector<std::vector<std::size_t>> passes = PlanPasses(mesh, layout, texels_per_pass);
   summary.num_passes = static_cast<int>(passes.size());
   std::vector<std::mutex> locks(1024);
   // The maps of the view each worker is on, reused from view to view and pass to pass.
   std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
   std::size_t total_samples = 0;
   for (std::size_t p = 0; p < passes.size(); ++p) {
-    const std::size_t first_texel = layout.chart_offsets[passes[p].first];
-    const std::size_t end_texel = layout.chart_offsets[passes[p].second];
-    // Which faces each view samples in this pass.
-    std::vector<std::vector<std::uint32_t>> faces_of_view(views.size());
-    for (std::size_t t = first_texel; t < end_texel;) {
-      const std::uint32_t face = layout.texels[t].face;
-      for (const FaceViewCandidate* c = candidates.begin(face); c != candidates.end(face); ++c) {
-        faces_of_view[c->view].push_back(face);
+    // Which faces each view samples in this pass, and where each face's samples go.
+    std::vector<std::vector<PassFace>> faces_of_view(views.size());
+    std::vector<std::pair<std::size_t, std::size_t>> texel_ranges;  // of the pass's charts, in buffer order
+    std::size_t num_samples = 0;
+    for (const std::size_t chart : passes[p]) {
+      const std::size_t chart_begin = layout.chart_offsets[chart], chart_end = layout.chart_offsets[chart + 1];
+      texel_ranges.emplace_back(chart_begin, chart_end);
+      for (std::size_t t = chart_begin; t < chart_end;) {
+        const std::uint32_t face = layout.texels[t].face;
+        for (const FaceViewCandidate* c = candidates.begin(face); c != candidates.end(face); ++c) {
+          faces_of_view[c->view].push_back({face, num_samples + (t - chart_begin)});
+        }
+        t = layout.face_ranges[face].second;
       }
-      t = layout.face_ranges[face].second;
+      num_samples += chart_end - chart_begin;
     }
     std::vector<std::size_t> used_views;
     for (std::size_t v = 0; v < views.size(); ++v) {
       if (!faces_of_view[v].empty()) used_views.push_back(v);
     }
     summary.views_read += used_views.size();
-    std::vector<TexelSamples> samples(end_texel - first_texel);
+    std::vector<TexelSamples> samples(num_samples);
     std::optional<ProgressReporter> progress;
     if (options.show_progress) {
       progress.emplace(passes.size() > 1 ? options.progress_label + ", pass " + std::to_string(p + 1) + "/" +
@@ -214,24 +301,28 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
       const cv::Mat colour = LoadViewImage(source, views, v);
       const cv::Mat confidence = LoadViewConfidence(source, views, v);
       GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
-      raycaster.Render(views[v], &maps);
+      raycaster.Render(views[v], &maps, SampledWindow(mesh, views[v], faces_of_view[v]));
       SampleView(mesh, views[v], static_cast<std::uint32_t>(v), maps, colour, confidence, faces_of_view[v], layout,
-                 first_texel, samples, locks);
+                 samples, locks);
       if (progress) progress->Advance();
     });
     if (progress) progress->Finish();
-    for (std::size_t t = first_texel; t < end_texel; ++t) {
-      const AtlasTexel& texel = layout.texels[t];
-      cv::Vec3f& out = pages[texel.page].at<cv::Vec3f>(texel.y, texel.x);
-      const TexelSamples& texel_samples = samples[t - first_texel];
-      total_samples += texel_samples.count;
-      if (texel_samples.count == 0) {
-        out = cv::Vec3f::all(std::numeric_limits<float>::quiet_NaN());
-        ++summary.texels_without_samples;
-        continue;
+    std::size_t s = 0;
+    for (const auto& [begin, end] : texel_ranges) {
+      for (std::size_t t = begin; t < end; ++t, ++s) {
+        const AtlasTexel& texel = layout.texels[t];
+        cv::Vec3f& out = pages[texel.page].at<cv::Vec3f>(texel.y, texel.x);
+        const TexelSamples& texel_samples = samples[s];
+        total_samples += texel_samples.count;
+        if (texel_samples.count == 0) {
+          out = cv::Vec3f::all(std::numeric_limits<float>::quiet_NaN());
+          ++summary.texels_without_samples;
+          continue;
+        }
+        const Eigen::Vector3f colour =
+            Blend(texel_samples, view_of_face[texel.face], options.blend, &summary.rejected_samples);
+        out = cv::Vec3f(colour.x(), colour.y(), colour.z());
       }
-      const Eigen::Vector3f colour = Blend(texel_samples, view_of_face[texel.face], options.blend, &summary.rejected_samples);
-      out = cv::Vec3f(colour.x(), colour.y(), colour.z());
     }
   }
   summary.mean_samples_per_texel = summary.num_texels ? double(total_samples) / double(summary.num_texels) : 0.0;

@@ -17,7 +17,9 @@
 //            where that view does not see the texel (partly occluded face), the heaviest sample.
 //
 // Memory: kSamplesPerTexel samples per texel for the texels of one pass; the atlas is done in as many
-// passes over the views as `memory_limit_bytes` needs (each pass reads only the views its charts need).
+// passes over the views as `memory_limit_bytes` needs. Each pass takes neighbouring charts (one part of
+// the surface), reads only the views that see them and ray casts only the rectangle of each view their
+// faces project to. Results do not depend on the passes.
 
 #include <cstdint>
 #include <string>

@@ -35,10 +35,11 @@ const CameraRays& ViewRaycaster::RaysFor(const Camera& camera) const {
   return *rays;
 }
 
-void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps) const {
+void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps, const cv::Rect& window) const {
   GeometryMapsOptions options;
-  options.normal = true;
+  options.normal = false;
   options.num_threads = 1;
+  options.window = window;
   scene_.Render(RaysFor(view.camera), view.cam_from_world, options, maps);
 }
 

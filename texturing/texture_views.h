@@ -51,9 +51,10 @@ class ViewRaycaster {
  public:
   explicit ViewRaycaster(const RaycastScene& scene) : scene_(scene) {}
 
-  // Depth, camera-frame normal and face id of every pixel of `view` into `maps`, reusing its buffers
-  // (one set per worker: no fresh memory per view). One thread: views run in parallel.
-  void Render(const TextureView& view, GeometryMaps* maps) const;
+  // Depth and face id of every pixel of `view` into `maps`, or of the pixels of `window` when it is not
+  // empty (maps.origin tells where the maps start), reusing its buffers (one set per worker: no fresh
+  // memory per view). One thread: views run in parallel.
+  void Render(const TextureView& view, GeometryMaps* maps, const cv::Rect& window = cv::Rect()) const;
 
  private:
   const CameraRays& RaysFor(const Camera& camera) const;

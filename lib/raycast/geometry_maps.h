@@ -6,6 +6,8 @@
 
 namespace lutex {
 
+// Each map covers the image, or the window of it that was rendered (GeometryMapsOptions::window): pixel
+// (col, row) of the image is then at (col - window.x, row - window.y) of the maps.
 struct GeometryMaps {
   // Planar depth z in the camera frame (scene units), CV_32F; NaN where the ray hits nothing.
   cv::Mat depth;
@@ -21,6 +23,8 @@ struct GeometryMaps {
   // Barycentric coordinates (b1, b2) of the hit in its face, CV_32FC2: the point is
   // (1 - b1 - b2) * v0 + b1 * v1 + b2 * v2. Empty when not requested.
   cv::Mat barycentrics;
+  // The image pixel at (0, 0) of the maps: the window's corner, (0, 0) for the whole image.
+  cv::Point origin;
 };
 
 struct GeometryMapsOptions {
@@ -36,6 +40,12 @@ struct GeometryMapsOptions {
   bool adaptive = true;
   // Threads over tiles of the image; <= 0 means all cores. Results do not depend on it.
   int num_threads = 0;
+  // The pixels to render, when only part of the image is needed (a texturer that samples a few faces of a
+  // 12 MP view casts their rectangle, not the image); empty: the whole image. Clipped to the image. The
+  // samples of the adaptive cast stay on the whole image's grid (the window's corner is moved to even
+  // coordinates, which GeometryMaps::origin tells), so a pixel renders as it does in the whole image
+  // except within two pixels of the window's far edges.
+  cv::Rect window;
 };
 
 }  // namespace lutex

@@ -223,16 +223,30 @@ class PoseRenderer {
         cam_from_world_rotation_d_(cam_from_world.rotation.toRotationMatrix()),
         centre_local_(cam_from_world.TargetOriginInSource() - scene_origin),
         centre_(centre_local_.cast<float>()) {
+    const cv::Rect image(0, 0, rays.width(), rays.height());
+    cv::Rect window = options.window.empty() ? image : (options.window & image);
+    if (window.empty()) window = cv::Rect();
+    window.width += window.x % 2;  // the corner to even coordinates, the far edges kept
+    window.height += window.y % 2;
+    window.x -= window.x % 2;
+    window.y -= window.y % 2;
+    begin_col_ = window.x;
+    begin_row_ = window.y;
+    end_col_ = window.x + window.width;
+    end_row_ = window.y + window.height;
     AllocateMaps();
   }
+
+  // True when the window has no pixel (nothing to cast).
+  bool Empty() const { return end_col_ <= begin_col_ || end_row_ <= begin_row_; }
 
   // Pass 1: the sample pixels (every `step`-th column and row, and always the last one), cast in packets
   // of 4 x 4 samples.
   void CastSamples(int step) {
-    for (int c = 0; c < rays_.width(); c += step) sample_cols_.push_back(c);
-    if (sample_cols_.back() != rays_.width() - 1) sample_cols_.push_back(rays_.width() - 1);
-    for (int r = 0; r < rays_.height(); r += step) sample_rows_.push_back(r);
-    if (sample_rows_.back() != rays_.height() - 1) sample_rows_.push_back(rays_.height() - 1);
+    for (int c = begin_col_; c < end_col_; c += step) sample_cols_.push_back(c);
+    if (sample_cols_.back() != end_col_ - 1) sample_cols_.push_back(end_col_ - 1);
+    for (int r = begin_row_; r < end_row_; r += step) sample_rows_.push_back(r);
+    if (sample_rows_.back() != end_row_ - 1) sample_rows_.push_back(end_row_ - 1);
     const int block_rows = static_cast<int>((sample_rows_.size() + kBlock - 1) / kBlock);
     const int block_cols = static_cast<int>((sample_cols_.size() + kBlock - 1) / kBlock);
     ParallelFor(static_cast<std::size_t>(block_rows), options_.num_threads, [&](std::size_t block_row) {
@@ -252,17 +266,18 @@ class PoseRenderer {
   // Pass 2: every other pixel. Its enclosing samples (the pixel itself where it is one) were written in
   // pass 1 and are only read here, and each row writes only itself, so rows run in parallel.
   void FillBetweenSamples() {
-    const std::vector<std::pair<int, int>> cols_around = Enclosing(sample_cols_, rays_.width());
-    const std::vector<std::pair<int, int>> rows_around = Enclosing(sample_rows_, rays_.height());
-    ParallelFor(static_cast<std::size_t>(rays_.height()), options_.num_threads, [&](std::size_t row_index) {
-      FillRow(static_cast<int>(row_index), rows_around[row_index], cols_around);
+    const std::vector<std::pair<int, int>> cols_around = Enclosing(sample_cols_, begin_col_, end_col_);
+    const std::vector<std::pair<int, int>> rows_around = Enclosing(sample_rows_, begin_row_, end_row_);
+    ParallelFor(rows_around.size(), options_.num_threads, [&](std::size_t row_index) {
+      FillRow(begin_row_ + static_cast<int>(row_index), rows_around[row_index], cols_around);
     });
   }
 
  private:
   // Every pixel is written exactly once (a hit or a miss), so the maps need no initial values.
   void AllocateMaps() {
-    const int width = rays_.width(), height = rays_.height();
+    const int width = end_col_ - begin_col_, height = end_row_ - begin_row_;
+    maps_.origin = cv::Point(begin_col_, begin_row_);
     maps_.depth.create(height, width, CV_32F);
     maps_.face_id.create(height, width, CV_32S);
     if (options_.normal) {
@@ -277,8 +292,12 @@ class PoseRenderer {
     }
   }
 
+  // Pixel (col, row) of the image.
   void Write(int col, int row, const PixelHit& hit) const {
     const float nan = std::numeric_limits<float>::quiet_NaN();
+    const Eigen::Vector3f& direction_in_cam = rays_.Direction(col, row);
+    col -= begin_col_;
+    row -= begin_row_;
     maps_.face_id.at<int>(row, col) = hit.face;
     if (hit.face < 0) {
       maps_.depth.at<float>(row, col) = nan;
@@ -286,7 +305,6 @@ class PoseRenderer {
       if (options_.barycentrics) maps_.barycentrics.at<cv::Vec2f>(row, col) = cv::Vec2f(nan, nan);
       return;
     }
-    const Eigen::Vector3f& direction_in_cam = rays_.Direction(col, row);
     maps_.depth.at<float>(row, col) = hit.distance * direction_in_cam.z();
     if (options_.normal) {
       Eigen::Vector3f facing = hit.unit_normal_in_cam;
@@ -391,13 +409,14 @@ class PoseRenderer {
     return nearest;
   }
 
-  // For every pixel 0..size-1 the samples around it: (i, i) where i is a sample.
-  static std::vector<std::pair<int, int>> Enclosing(const std::vector<int>& samples, int size) {
-    std::vector<std::pair<int, int>> result(static_cast<std::size_t>(size));
+  // For every pixel begin..end-1 (at index i - begin) the samples around it: (i, i) where i is a sample.
+  static std::vector<std::pair<int, int>> Enclosing(const std::vector<int>& samples, int begin, int end) {
+    std::vector<std::pair<int, int>> result(static_cast<std::size_t>(end - begin));
     std::size_t s = 0;
-    for (int i = 0; i < size; ++i) {
+    for (int i = begin; i < end; ++i) {
       while (s + 1 < samples.size() && samples[s + 1] <= i) ++s;
-      result[static_cast<std::size_t>(i)] = samples[s] == i ? std::make_pair(i, i) : std::make_pair(samples[s], samples[s + 1]);
+      result[static_cast<std::size_t>(i - begin)] =
+          samples[s] == i ? std::make_pair(i, i) : std::make_pair(samples[s], samples[s + 1]);
     }
     return result;
   }
@@ -423,11 +442,12 @@ class PoseRenderer {
       return recent[slot];
     };
     const cv::Mat& faces = maps_.face_id;
-    for (int col = 0; col < rays_.width(); ++col) {
-      const auto [col0, col1] = cols_around[static_cast<std::size_t>(col)];
+    const auto face_at = [&](int r, int c) { return faces.at<int>(r - begin_row_, c - begin_col_); };
+    for (int col = begin_col_; col < end_col_; ++col) {
+      const auto [col0, col1] = cols_around[static_cast<std::size_t>(col - begin_col_)];
       if (row0 == row && row1 == row && col0 == col && col1 == col) continue;  // a sample
-      const std::array<int, 4> corners = {faces.at<int>(row0, col0), faces.at<int>(row0, col1),
-                                          faces.at<int>(row1, col0), faces.at<int>(row1, col1)};
+      const std::array<int, 4> corners = {face_at(row0, col0), face_at(row0, col1), face_at(row1, col0),
+                                          face_at(row1, col1)};
       const PixelHit hit = HitAmongCornerFaces(corners, rays_.Direction(col, row), plane_of);
       if (hit.face >= 0) {
         Write(col, row, hit);
@@ -454,6 +474,8 @@ class PoseRenderer {
   const Eigen::Matrix3d cam_from_world_rotation_d_;
   const Eigen::Vector3d centre_local_;  // the camera centre relative to the scene's origin
   const Eigen::Vector3f centre_;
+  // The window rendered, in image pixels: [begin, end).
+  int begin_col_ = 0, begin_row_ = 0, end_col_ = 0, end_row_ = 0;
   std::vector<int> sample_cols_, sample_rows_;
 };
 
@@ -473,6 +495,7 @@ void RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
   }
   PoseRenderer renderer(impl_->scene, impl_->origin, impl_->local_vertices, impl_->faces, impl_->vertex_normals,
                         rays, cam_from_world, options, output);
+  if (renderer.Empty()) return;
   renderer.CastSamples(options.adaptive ? 2 : 1);
   if (options.adaptive) renderer.FillBetweenSamples();
 }

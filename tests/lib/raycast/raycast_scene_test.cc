@@ -31,6 +31,18 @@ Camera DistortedCamera() {
   return camera;
 }
 
+// Rolling terrain with a boulder on it, and a view from above that sees both.
+Mesh TerrainWithBoulder() {
+  Mesh mesh = MakeHeightFieldMesh([](double x, double y) { return 0.2 * std::sin(3 * x) * std::cos(2 * y); },
+                                  -3, 3, -3, 3, 60, 60);
+  AppendMesh(MakeSphereMesh(Eigen::Vector3d(0.3, 0.2, 0.3), 0.4, 24, 48), &mesh);
+  return mesh;
+}
+
+Rigid3d LookingDownAtTheTerrain() {
+  return CamFromWorldLookingAt(Eigen::Vector3d(0.2, 0, 3), Eigen::Vector3d(0, 0.1, -1), Eigen::Vector3d(0, 1, 0));
+}
+
 // Every pixel of a tilted plane has the depth and normal of the analytic ray-plane intersection.
 TEST(RaycastScene, TiltedPlaneHasExactDepthAndNormal) {
   const Eigen::Vector3d plane_point(0.3, -0.2, 4.0);
@@ -197,12 +209,8 @@ TEST(RaycastScene, ResultsDoNotDependOnTheThreadCount) {
 // the same face everywhere and the same depth to float precision, on a bumpy terrain with a boulder seen
 // through a distorted camera (silhouettes and triangle edges included).
 TEST(RaycastScene, AdaptiveCastingEqualsCastingEveryPixel) {
-  Mesh mesh = MakeHeightFieldMesh([](double x, double y) { return 0.2 * std::sin(3 * x) * std::cos(2 * y); },
-                                  -3, 3, -3, 3, 60, 60);
-  AppendMesh(MakeSphereMesh(Eigen::Vector3d(0.3, 0.2, 0.3), 0.4, 24, 48), &mesh);
-  const RaycastScene scene(mesh);
-  const Rigid3d cam_from_world =
-      CamFromWorldLookingAt(Eigen::Vector3d(0.2, 0, 3), Eigen::Vector3d(0, 0.1, -1), Eigen::Vector3d(0, 1, 0));
+  const RaycastScene scene(TerrainWithBoulder());
+  const Rigid3d cam_from_world = LookingDownAtTheTerrain();
   const CameraRays rays(DistortedCamera());
   GeometryMapsOptions full, adaptive;
   full.adaptive = false;
@@ -230,13 +238,9 @@ TEST(RaycastScene, AdaptiveCastingEqualsCastingEveryPixel) {
 // water into maps last filled by a view of the terrain gives the maps of rendering it fresh, misses
 // included; options not requested are dropped.
 TEST(RaycastScene, RenderingIntoReusedMapsEqualsRenderingFresh) {
-  Mesh mesh = MakeHeightFieldMesh([](double x, double y) { return 0.2 * std::sin(3 * x) * std::cos(2 * y); },
-                                  -3, 3, -3, 3, 60, 60);
-  AppendMesh(MakeSphereMesh(Eigen::Vector3d(0.3, 0.2, 0.3), 0.4, 24, 48), &mesh);
-  const RaycastScene scene(mesh);
+  const RaycastScene scene(TerrainWithBoulder());
   const CameraRays rays(DistortedCamera());
-  const Rigid3d terrain_view =
-      CamFromWorldLookingAt(Eigen::Vector3d(0.2, 0, 3), Eigen::Vector3d(0, 0.1, -1), Eigen::Vector3d(0, 1, 0));
+  const Rigid3d terrain_view = LookingDownAtTheTerrain();
   const Rigid3d sideways_view =
       CamFromWorldLookingAt(Eigen::Vector3d(-2.5, 0.2, 0.5), Eigen::Vector3d(1, 0, 0.15), Eigen::Vector3d(0, 0, 1));
   GeometryMapsOptions with_barycentrics;
@@ -256,6 +260,48 @@ TEST(RaycastScene, RenderingIntoReusedMapsEqualsRenderingFresh) {
   cv::patchNaNs(depth_fresh, -1);
   EXPECT_EQ(cv::norm(depth_reused, depth_fresh, cv::NORM_INF), 0.0);
   EXPECT_TRUE(reused.barycentrics.empty());
+}
+
+// A window renders what the whole image shows at those pixels (an odd corner moves to the even pixel
+// before it; the whole image's far edges and a window's far edges are the only places allowed to differ,
+// here neither within two pixels is compared); a window off the image renders nothing.
+TEST(RaycastScene, AWindowRendersWhatTheWholeImageShowsThere) {
+  const RaycastScene scene(TerrainWithBoulder());
+  const Rigid3d cam_from_world = LookingDownAtTheTerrain();
+  const CameraRays rays(DistortedCamera());
+  const GeometryMaps whole = scene.Render(rays, cam_from_world);
+  EXPECT_EQ(whole.origin, cv::Point(0, 0));
+  for (const cv::Rect& window : {cv::Rect(37, 21, 50, 41), cv::Rect(120, 90, 100, 100), cv::Rect(-5, -5, 30, 20)}) {
+    GeometryMapsOptions options;
+    options.window = window;
+    const GeometryMaps part = scene.Render(rays, cam_from_world, options);
+    const cv::Rect clipped = window & cv::Rect(0, 0, 160, 120);
+    EXPECT_EQ(part.origin, cv::Point(clipped.x - clipped.x % 2, clipped.y - clipped.y % 2));
+    EXPECT_EQ(part.origin.x + part.depth.cols, clipped.x + clipped.width);
+    EXPECT_EQ(part.origin.y + part.depth.rows, clipped.y + clipped.height);
+    int compared = 0;
+    for (int row = part.origin.y; row < clipped.y + clipped.height - 2; ++row) {
+      for (int col = part.origin.x; col < clipped.x + clipped.width - 2; ++col) {
+        const int map_row = row - part.origin.y, map_col = col - part.origin.x;
+        ASSERT_EQ(part.face_id.at<int>(map_row, map_col), whole.face_id.at<int>(row, col)) << col << "," << row;
+        const float z_part = part.depth.at<float>(map_row, map_col), z_whole = whole.depth.at<float>(row, col);
+        if (std::isnan(z_whole)) {
+          ASSERT_TRUE(std::isnan(z_part));
+        } else {
+          ASSERT_EQ(z_part, z_whole) << col << "," << row;
+          const cv::Vec3f n_part = part.normal.at<cv::Vec3f>(map_row, map_col);
+          ASSERT_EQ(cv::norm(n_part - whole.normal.at<cv::Vec3f>(row, col)), 0.0);
+        }
+        ++compared;
+      }
+    }
+    EXPECT_GT(compared, 200);
+  }
+  GeometryMapsOptions off_image;
+  off_image.window = cv::Rect(500, 500, 10, 10);
+  const GeometryMaps nothing = scene.Render(rays, cam_from_world, off_image);
+  EXPECT_TRUE(nothing.depth.empty());
+  EXPECT_TRUE(nothing.face_id.empty());
 }
 
 // Large (georeferenced) coordinates keep millimetre depth precision thanks to the local origin.
