@@ -42,9 +42,9 @@ namespace fs = std::filesystem;
 // D/W/scene/mesh.ply), D/lut.lut (alpha 1, beta 0 everywhere: restoring with it is valid), D/targets.json,
 // D/a_file (a plain file), D/lutex.conf (a valid config file).
 const fs::path& PristineDive() {
-  static testing::TempDir* dir = [] {
-    auto* made = new testing::TempDir();
-    const fs::path root = made->path();
+  // A static, not a leaked pointer: each case runs in its own process, and the folder must go with it.
+  static const testing::TempDir dir;
+  static const bool made = [](const fs::path& root) {
     std::ofstream(root / "scene.json") << testing::SmallSurveyScene().dump(1);
     SimulateOptions simulate;
     simulate.scene = root / "scene.json";
@@ -58,9 +58,10 @@ const fs::path& PristineDive() {
     fs::copy_file(fs::path(LUTEX_SOURCE_DIR) / "examples" / "dive" / "board_targets.json", root / "targets.json");
     std::ofstream(root / "a_file") << "not a folder";
     std::ofstream(root / "lutex.conf") << "# a config file\nmesh = W/scene/mesh.ply\n";
-    return made;
-  }();
-  return dir->path();
+    return true;
+  }(dir.path());
+  (void)made;
+  return dir.path();
 }
 
 std::string ReadText(const fs::path& path) {

@@ -35,16 +35,18 @@ namespace fs = std::filesystem;
 
 // A 4 x 3 m seafloor (2400 faces) seen by 6 images of 160 x 120, simulated once.
 const fs::path& SimulatedSurvey() {
-  static testing::TempDir* dir = [] {
-    auto* made = new testing::TempDir();
-    std::ofstream(made->path() / "scene.json") << testing::SmallSurveyScene().dump(1);
+  // A static, not a leaked pointer: each case runs in its own process, and the folder must go with it.
+  static const testing::TempDir dir;
+  static const bool made = [](const fs::path& root) {
+    std::ofstream(root / "scene.json") << testing::SmallSurveyScene().dump(1);
     SimulateOptions simulate;
-    simulate.scene = made->path() / "scene.json";
-    simulate.output = made->path() / "W";
+    simulate.scene = root / "scene.json";
+    simulate.output = root / "W";
     SimulateWorkspace(simulate);
-    return made;
-  }();
-  return dir->path();
+    return true;
+  }(dir.path());
+  (void)made;
+  return dir.path();
 }
 
 const Eigen::Vector3d kEnuOrigin(54.32, 10.14, -20.0);
