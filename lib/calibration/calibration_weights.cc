@@ -41,10 +41,12 @@ Eigen::Vector3d MeanDifference(const FrustumLut& lut, int k0, int k1, bool withi
   return count ? Eigen::Vector3d(sum / count) : Eigen::Vector3d::Zero();
 }
 
-Eigen::Vector3d SlabMean(const FrustumLut& lut, int k) {
+// Mean over slab k's nodes of one quantity (per channel).
+template <typename Get>
+Eigen::Vector3d SlabMean(const FrustumLut& lut, int k, Get get) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int j = 0; j < lut.grid().NodesY(); ++j) {
-    for (int i = 0; i < lut.grid().NodesX(); ++i) sum += 0.7 * lut.node(i, j, k).alpha + lut.node(i, j, k).beta;
+    for (int i = 0; i < lut.grid().NodesX(); ++i) sum += get(lut.node(i, j, k));
   }
   return sum / (lut.grid().NodesX() * lut.grid().NodesY());
 }
@@ -78,23 +80,26 @@ SmoothnessWeights ComputeSmoothnessWeights(const FrustumLut& reference, double s
 }
 
 KnownColorWeighting::KnownColorWeighting(const FrustumLut& reference) : reference_(reference) {
-  for (int k = 0; k < reference.grid().nz; ++k) slab_means_.push_back(SlabMean(reference, k));
+  for (int k = 0; k < reference.grid().nz; ++k) {
+    slab_means_.push_back(SlabMean(reference, k, [](const LutNode& node) { return Eigen::Vector3d(0.7 * node.alpha + node.beta); }));
+    slab_alpha_means_.push_back(SlabMean(reference, k, [](const LutNode& node) { return node.alpha; }));
+  }
 }
 
 Eigen::Vector3d KnownColorWeighting::operator()(const KnownColorObservation& observation) const {
-  return ViewWeight(observation.pixel, observation.point_in_cam, observation.intensity);
+  return ViewWeight(observation.pixel, observation.point_in_cam, observation.cos_theta);
 }
 
 Eigen::Vector3d KnownColorWeighting::operator()(const CorrespondenceObservation& observation) const {
-  const Eigen::Vector3d first = ViewWeight(observation.first.pixel, observation.first.point_in_cam, observation.first.intensity);
+  const Eigen::Vector3d first = ViewWeight(observation.first.pixel, observation.first.point_in_cam, observation.first.cos_theta);
   const Eigen::Vector3d second =
-      ViewWeight(observation.second.pixel, observation.second.point_in_cam, observation.second.intensity);
+      ViewWeight(observation.second.pixel, observation.second.point_in_cam, observation.second.cos_theta);
   const Eigen::Vector3d norm = (first.cwiseAbs2() + second.cwiseAbs2()).cwiseSqrt();
   return (first.cwiseProduct(second).array() / norm.array().max(1e-300)).matrix();
 }
 
 Eigen::Vector3d KnownColorWeighting::ViewWeight(const Eigen::Vector2d& pixel, const Eigen::Vector3d& point_in_cam,
-                                                const Eigen::Vector3d& intensity) const {
+                                                double cos_theta) const {
   const FrustumLutGrid& grid = reference_.grid();
   const double z = point_in_cam.z();
   const int slab = std::clamp(static_cast<int>(std::lround(grid.SlabCoordinate(z))), 0, grid.nz - 1);
@@ -109,13 +114,16 @@ Eigen::Vector3d KnownColorWeighting::ViewWeight(const Eigen::Vector2d& pixel, co
                                          std::pow(gz - std::round(gz), 2));
   const double inverse_distance = 1.0 / std::max(node_distance, 0.25);
   const double forward_scatter = std::exp(-point_in_cam.norm());  // 1 / (e^(0.5 d))^2
+  const Eigen::Vector3d& alpha_mean = slab_alpha_means_[static_cast<std::size_t>(slab)];
+  const Eigen::Vector3d alpha_here = reference_.Lookup(pixel.x(), pixel.y(), z).alpha * std::max(cos_theta, 0.0);
   Eigen::Vector3d weight;
   for (int c = 0; c < 3; ++c) {
     const double mean_c = std::max(mean[c], 1e-12);
     const double shot = 0.01 * std::sqrt(mean_c);
     const double constant = mean_c / (kReferenceSnr * mean_0_green);
-    const double snr = std::max(intensity[c], 0.0) / (shot + constant);
-    weight[c] = inverse_distance * snr * forward_scatter;
+    const double slab_snr = mean_c / (shot + constant);
+    const double albedo_scale = std::max(alpha_mean[c], 1e-12) / std::max(alpha_here[c], 0.05 * alpha_mean[c]);
+    weight[c] = inverse_distance * slab_snr * albedo_scale * forward_scatter;
   }
   return weight;
 }
