@@ -146,8 +146,9 @@ TEST(BlenderCalibration, TurbidWaterIsMeasuredAndTheColorCheckerRestored) {
   std::printf("checker_turbid: median %.2f, p90 %.2f, worst %.2f\n", errors[errors.size() / 2],
               errors[errors.size() * 9 / 10], errors.back());
   EXPECT_LE(errors[errors.size() / 2], 5.0);  // the turbid goal for the median
-  // The goal for the worst patch, 20, is not reached (README: forward-scatter blur); raw is 89.
-  EXPECT_LE(errors.back(), 60.0);
+  // The goal for the worst patch, 20, is not reached (README: red at range, contrast); raw is 89.
+  // Measured 33.5 (43.8 with the paper's intensity weights, README 'Weights in albedo units').
+  EXPECT_LE(errors.back(), 40.0);
 }
 
 // In air (inair_whiteboard): calibrate from the white board (albedo 0.8) with one known colour, beta held
