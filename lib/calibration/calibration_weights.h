@@ -25,7 +25,7 @@
 // intensity error is the largest albedo error, and the LUT there followed the reference, not the data.
 // Measured (README, 'Weights in albedo units'): simulated dives over three waters and two rigs no worse and
 // up to 3 pp better (coastal), Blender turbid boards restored with their own LUT 5.8 -> 4.4 pp. Dropping the
-// distance term as well helped the Blender sets more but made every simulated dive worse, so it stays.
+// distance term as well helped the Blender sets more but made the simulated dives it was tried on worse.
 // The floor 0.05 abar_N only guards against a reference alpha of 0 (results did not change between 0.02
 // and 0.2). The paper's d_v, the distance from the voxel centre, is unbounded at a node; lutex measures it
 // in node spacings to the nearest node and floors it at 0.25.
