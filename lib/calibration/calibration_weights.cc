@@ -122,7 +122,8 @@ Eigen::Vector3d KnownColorWeighting::ViewWeight(const Eigen::Vector2d& pixel, co
     const double shot = 0.01 * std::sqrt(mean_c);
     const double constant = mean_c / (kReferenceSnr * mean_0_green);
     const double slab_snr = mean_c / (shot + constant);
-    const double albedo_scale = std::max(alpha_mean[c], 1e-12) / std::max(alpha_here[c], 0.05 * alpha_mean[c]);
+    const double alpha_mean_c = std::max(alpha_mean[c], 1e-12);  // a slab of alpha 0 must not divide by 0
+    const double albedo_scale = alpha_mean_c / std::max(alpha_here[c], 0.05 * alpha_mean_c);
     weight[c] = inverse_distance * slab_snr * albedo_scale * forward_scatter;
   }
   return weight;
