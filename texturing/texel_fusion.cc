@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include "lib/geometry/spatial_batches.h"
 #include "lib/util/parallel_for.h"
 #include "lib/util/progress.h"
 
@@ -190,61 +191,49 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
   }
 }
 
-// The charts of each pass over the views, at most `texels_per_pass` texels each (a larger chart is a
-// pass of its own). Charts are taken in the order of their place on the surface (a Morton curve through
-// their centroids in the mesh's bounds), so a pass covers one part of the surface: it reads only the
-// views that see that part, and casts only the part of each view that shows it (SampledWindow).
+// The charts of each pass over the views, at most `texels_per_pass` texels each, batched along the
+// surface (spatial_batches.h) by their texel-weighted centroids: a pass reads only the views that see
+// its part of the surface, and casts only the part of each view that shows it (SampledWindow).
 std::vector<std::vector<std::size_t>> PlanPasses(const Mesh& mesh, const TexelLayout& layout,
                                                  std::size_t texels_per_pass) {
   const std::size_t num_charts = layout.chart_offsets.size() - 1;
-  if (num_charts == 0) return {};
-  if (layout.texels.size() <= texels_per_pass) {
-    std::vector<std::size_t> all(num_charts);
-    for (std::size_t c = 0; c < num_charts; ++c) all[c] = c;
-    return {all};
-  }
   Eigen::AlignedBox3d bounds;
-  for (const Eigen::Vector3d& vertex : mesh.vertices) bounds.extend(vertex);
-  const Eigen::Vector3d extent = bounds.sizes().cwiseMax(1e-12);
-  std::vector<std::pair<std::uint64_t, std::size_t>> order;  // (Morton code of the centroid, chart)
-  order.reserve(num_charts);
+  if (layout.texels.size() > texels_per_pass) {
+    for (const Eigen::Vector3d& vertex : mesh.vertices) bounds.extend(vertex);
+  }
+  std::vector<Eigen::Vector3d> centroids(num_charts, bounds.isEmpty() ? Eigen::Vector3d::Zero() : bounds.min());
+  std::vector<std::size_t> sizes(num_charts);
   for (std::size_t c = 0; c < num_charts; ++c) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    std::size_t count = 0;
+    sizes[c] = layout.chart_offsets[c + 1] - layout.chart_offsets[c];
+    if (bounds.isEmpty() || sizes[c] == 0) continue;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (std::size_t t = layout.chart_offsets[c]; t < layout.chart_offsets[c + 1];) {
       const std::uint32_t face = layout.texels[t].face;
       const std::size_t end = layout.face_ranges[face].second;
-      for (const std::uint32_t vertex : mesh.faces[face]) centroid += double(end - t) * mesh.vertices[vertex];
-      count += 3 * (end - t);
+      for (const std::uint32_t vertex : mesh.faces[face]) sum += double(end - t) * mesh.vertices[vertex];
       t = end;
     }
-    std::uint64_t code = 0;
-    if (count > 0) {
-      const Eigen::Vector3d cell = ((centroid / double(count) - bounds.min()).cwiseQuotient(extent) * 1023.0)
-                                       .cwiseMax(0.0)
-                                       .cwiseMin(1023.0);
-      for (int bit = 9; bit >= 0; --bit) {
-        for (int axis = 0; axis < 3; ++axis) code = (code << 1) | ((static_cast<std::uint64_t>(cell[axis]) >> bit) & 1u);
-      }
-    }
-    order.emplace_back(code, c);
+    centroids[c] = sum / double(3 * sizes[c]);
   }
-  std::sort(order.begin(), order.end());
-  std::vector<std::vector<std::size_t>> passes;
-  std::size_t texels_in_pass = 0;
-  for (const auto& [code, chart] : order) {
-    const std::size_t texels = layout.chart_offsets[chart + 1] - layout.chart_offsets[chart];
-    if (passes.empty() || texels_in_pass + texels > texels_per_pass) {
-      passes.emplace_back();
-      texels_in_pass = 0;
-    }
-    passes.back().push_back(chart);
-    texels_in_pass += texels;
-  }
-  return passes;
+  return BatchAlongMortonCurve(centroids, sizes, bounds, texels_per_pass);
 }
 
 }  // namespace
+
+void TexelFusionSummary::Add(const TexelFusionSummary& other) {
+  const std::size_t texels = num_texels + other.num_texels;
+  mean_samples_per_texel =
+      texels ? (mean_samples_per_texel * double(num_texels) + other.mean_samples_per_texel * double(other.num_texels)) /
+                   double(texels)
+             : 0.0;
+  num_passes += other.num_passes;
+  views_read += other.views_read;
+  num_texels = texels;
+  texels_without_samples += other.texels_without_samples;
+  rejected_samples += other.rejected_samples;
+}
+
+std::size_t FusionBytesPerTexel() { return sizeof(TexelSamples); }
 
 TexelBlend ParseTexelBlend(const std::string& name) {
   if (name == "fuse") return TexelBlend::kFuse;
@@ -259,7 +248,7 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
   TexelFusionSummary summary;
   summary.num_texels = layout.texels.size();
   const std::size_t texels_per_pass =
-      std::max<std::size_t>(1, options.memory_limit_bytes / sizeof(TexelSamples));
+      std::max<std::size_t>(1, options.memory_limit_bytes / FusionBytesPerTexel());
   const std::vector<std::vector<std::size_t>> passes = PlanPasses(mesh, layout, texels_per_pass);
   summary.num_passes = static_cast<int>(passes.size());
   std::vector<std::mutex> locks(1024);

@@ -43,7 +43,8 @@ constexpr int kSamplesPerTexel = 4;
 
 struct TexelFusionOptions {
   TexelBlend blend = TexelBlend::kFuse;
-  // Bound on the sample buffers of one pass.
+  // Bound on the sample buffers of one pass (the texture baker's bound on a batch's texel table and
+  // samples together).
   std::size_t memory_limit_bytes = std::size_t{2} << 30;
   int num_threads = 0;
   // Progress over the views on stderr; off for callers that fuse many small layouts and report their own.
@@ -59,7 +60,13 @@ struct TexelFusionSummary {
   std::size_t texels_without_samples = 0;  // no view sees them: filled from their neighbours
   std::size_t rejected_samples = 0;
   double mean_samples_per_texel = 0.0;
+
+  // Adds the counts of another fusion (of other texels) to these.
+  void Add(const TexelFusionSummary& other);
 };
+
+// Bytes of sample buffer per texel of a pass: a pass takes `memory_limit_bytes` / this many texels.
+std::size_t FusionBytesPerTexel();
 
 // Writes the colour of every texel into `pages` (linear RGB CV_32FC3 of the layout's page sizes); texels
 // no view sees are NaN.

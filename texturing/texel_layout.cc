@@ -25,7 +25,9 @@ std::pair<double, double> ClosestOnSegment(const Eigen::Vector2d& a, const Eigen
   return {(a + t * ab - q).squaredNorm(), t};
 }
 
-std::vector<AtlasTexel> RasterizeChart(const TextureChart& chart, const AtlasPlacement& placement, double gutter) {
+// Which face of the chart, and which point of it, each texel of the chart's rectangle shows (row-major;
+// face_index -1: none).
+std::vector<TexelOwner> FindTexelOwners(const TextureChart& chart, double gutter) {
   std::vector<TexelOwner> owners(static_cast<std::size_t>(chart.width) * chart.height);
   for (std::size_t i = 0; i < chart.faces.size(); ++i) {
     const Eigen::Vector2d p[3] = {chart.corner_texels[3 * i].cast<double>(), chart.corner_texels[3 * i + 1].cast<double>(),
@@ -71,6 +73,11 @@ std::vector<AtlasTexel> RasterizeChart(const TextureChart& chart, const AtlasPla
       }
     }
   }
+  return owners;
+}
+
+std::vector<AtlasTexel> RasterizeChart(const TextureChart& chart, const AtlasPlacement& placement, double gutter) {
+  const std::vector<TexelOwner> owners = FindTexelOwners(chart, gutter);
   std::vector<std::tuple<int, int, int>> order;  // (face index, row, col)
   for (int row = 0; row < chart.height; ++row) {
     for (int col = 0; col < chart.width; ++col) {
@@ -97,11 +104,30 @@ std::vector<AtlasTexel> RasterizeChart(const TextureChart& chart, const AtlasPla
 
 }  // namespace
 
+std::vector<std::size_t> CountChartTexels(const std::vector<TextureChart>& charts, double gutter, int num_threads) {
+  std::vector<std::size_t> counts(charts.size());
+  ParallelFor(charts.size(), num_threads, [&](std::size_t c) {
+    const std::vector<TexelOwner> owners = FindTexelOwners(charts[c], gutter);
+    counts[c] = static_cast<std::size_t>(
+        std::count_if(owners.begin(), owners.end(), [](const TexelOwner& owner) { return owner.face_index >= 0; }));
+  });
+  return counts;
+}
+
 TexelLayout RasterizeTexels(const std::vector<TextureChart>& charts, const AtlasLayout& layout, std::size_t num_faces,
                             double gutter, int num_threads) {
-  std::vector<std::vector<AtlasTexel>> per_chart(charts.size());
-  ParallelFor(charts.size(), num_threads, [&](std::size_t c) {
-    per_chart[c] = RasterizeChart(charts[c], layout.placements[c], gutter);
+  std::vector<std::size_t> all(charts.size());
+  for (std::size_t c = 0; c < charts.size(); ++c) all[c] = c;
+  return RasterizeTexels(charts, layout, all, num_faces, gutter, num_threads);
+}
+
+TexelLayout RasterizeTexels(const std::vector<TextureChart>& charts, const AtlasLayout& layout,
+                            const std::vector<std::size_t>& chart_indices, std::size_t num_faces, double gutter,
+                            int num_threads) {
+  std::vector<std::vector<AtlasTexel>> per_chart(chart_indices.size());
+  ParallelFor(chart_indices.size(), num_threads, [&](std::size_t i) {
+    const std::size_t c = chart_indices.at(i);
+    per_chart[i] = RasterizeChart(charts.at(c), layout.placements.at(c), gutter);
   });
   TexelLayout result;
   result.face_ranges.assign(num_faces, {0, 0});

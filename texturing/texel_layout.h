@@ -40,4 +40,15 @@ struct TexelLayout {
 TexelLayout RasterizeTexels(const std::vector<TextureChart>& charts, const AtlasLayout& layout, std::size_t num_faces,
                             double gutter, int num_threads);
 
+// How many texels RasterizeTexels gives each chart (rasterised in parallel and dropped), so that an atlas
+// can be cut into batches of a known texel count before any batch is laid out.
+std::vector<std::size_t> CountChartTexels(const std::vector<TextureChart>& charts, double gutter, int num_threads);
+
+// The same for the charts `chart_indices` only, in that order (chart_offsets count them in that order;
+// the other charts' faces have empty ranges): an atlas laid out a batch of charts at a time, so that only
+// one batch's texels are held.
+TexelLayout RasterizeTexels(const std::vector<TextureChart>& charts, const AtlasLayout& layout,
+                            const std::vector<std::size_t>& chart_indices, std::size_t num_faces, double gutter,
+                            int num_threads);
+
 }  // namespace lutex

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "lib/geometry/spatial_batches.h"
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/logging.h"
 #include "lib/util/option_error.h"
@@ -110,26 +111,63 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
     throw OptionError("the atlas needs " + std::to_string(atlas.page_sizes.size()) + " pages of up to " +
                       std::to_string(options.charts.max_size) + " texels, but " + PagesHeld(options) + kFitTheAtlas);
   }
-  const TexelLayout layout = RasterizeTexels(charts, atlas, mesh.faces.size(), options.gutter, options.num_threads);
   summary.seconds_layout += SecondsSince(start);
-  if (show_progress) {
-    LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages, "
-              << layout.texels.size() << " surface texels";
-  }
 
+  // The texels are laid out, fused and corrected a batch of neighbouring charts at a time, so that the
+  // texel table and the fusion's samples are held for one batch only (bounded by the fusion's memory
+  // limit).
   start = std::chrono::steady_clock::now();
   textured.pages.clear();
   for (const cv::Size& size : atlas.page_sizes) {
     textured.pages.emplace_back(size, CV_32FC3, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
     summary.page_texels += static_cast<std::size_t>(size.area());
   }
+  Eigen::AlignedBox3d bounds;
+  for (const Eigen::Vector3d& vertex : mesh.vertices) bounds.extend(vertex);
+  // Each chart's centroid weighs its faces by their area in texels, where its texels are.
+  std::vector<Eigen::Vector3d> centroids(charts.size(), Eigen::Vector3d::Zero());
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    double total = 0.0;
+    for (std::size_t i = 0; i < charts[c].faces.size(); ++i) {
+      const Eigen::Vector2f* corner = &charts[c].corner_texels[3 * i];
+      const Eigen::Vector2f a = corner[1] - corner[0], b = corner[2] - corner[0];
+      const double texels = 0.5 * std::abs(double(a.x()) * b.y() - double(a.y()) * b.x()) + 1e-6;
+      const Mesh::Face& face = mesh.faces[charts[c].faces[i]];
+      centroids[c] += texels / 3.0 * (mesh.vertices[face[0]] + mesh.vertices[face[1]] + mesh.vertices[face[2]]);
+      total += texels;
+    }
+    if (total > 0.0) centroids[c] /= total;
+  }
+  const auto counting_start = std::chrono::steady_clock::now();
+  const std::vector<std::size_t> chart_texels = CountChartTexels(charts, options.gutter, options.num_threads);
+  double seconds_rasterising = SecondsSince(counting_start);
   TexelFusionOptions fusion = options.fusion;
   fusion.num_threads = options.num_threads;
   fusion.show_progress = fusion.show_progress && show_progress;
-  summary.fusion = FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, fusion, textured.pages);
-  ApplySeamCorrections(mesh, view_of_face, corrections, source_vertex, layout, options.num_threads, textured.pages);
+  const std::size_t texels_per_batch =
+      std::max<std::size_t>(1, fusion.memory_limit_bytes / (sizeof(AtlasTexel) + FusionBytesPerTexel()));
+  const std::vector<std::vector<std::size_t>> batches =
+      BatchAlongMortonCurve(centroids, chart_texels, bounds, texels_per_batch);
+  if (show_progress) {
+    LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages"
+              << (batches.size() > 1 ? ", coloured in " + std::to_string(batches.size()) + " parts" : "");
+  }
+  const std::string progress_label = fusion.progress_label;
+  for (std::size_t b = 0; b < batches.size(); ++b) {
+    const auto layout_start = std::chrono::steady_clock::now();
+    const TexelLayout layout =
+        RasterizeTexels(charts, atlas, batches[b], mesh.faces.size(), options.gutter, options.num_threads);
+    seconds_rasterising += SecondsSince(layout_start);
+    if (batches.size() > 1) {
+      fusion.progress_label = progress_label + ", part " + std::to_string(b + 1) + "/" + std::to_string(batches.size());
+    }
+    summary.fusion.Add(FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, fusion, textured.pages));
+    ApplySeamCorrections(mesh, view_of_face, corrections, source_vertex, layout, options.num_threads, textured.pages);
+    summary.num_texels += layout.texels.size();
+  }
   ParallelFor(textured.pages.size(), options.num_threads, [&](std::size_t p) { FillUnknownTexels(textured.pages[p]); });
-  summary.seconds_fusion += SecondsSince(start);
+  summary.seconds_layout += seconds_rasterising;
+  summary.seconds_fusion += SecondsSince(start) - seconds_rasterising;
 
   textured.face_page.assign(mesh.faces.size(), -1);
   textured.face_corner_texels.assign(mesh.faces.size(), {});
@@ -143,7 +181,6 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
   }
   summary.num_charts += charts.size();
   summary.num_pages += atlas.page_sizes.size();
-  summary.num_texels += layout.texels.size();
 }
 
 }  // namespace

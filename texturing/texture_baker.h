@@ -10,11 +10,13 @@
 //   5. texels tied to surface points, borders included           texel_layout.h
 //   6. texel colours fused from all views that see them,         texel_fusion.h           (passes over views)
 //      plus the seam correction
+//      (5 and 6 a batch of neighbouring charts at a time,        spatial_batches.h
+//      so the texel table and the samples are held for one batch: fusion.memory_limit_bytes bounds both)
 //   7. padding and unseen texels filled by pull-push             texture_fill.h
 //   8. the colour step across chart borders, for the summary     seam_visibility.h
 //
 // Images are loaded on demand through the ViewImageSource, at most one per thread, so memory depends on
-// the mesh and the atlas, not on the number of views.
+// the mesh, the atlas pages and the fusion's limit, not on the number of views.
 
 #include <string>
 #include <vector>

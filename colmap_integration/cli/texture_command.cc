@@ -62,8 +62,8 @@ void AddBakingOptions(OptionParser& parser, TextureBakingOptions* baking_options
   parser.NameField("max_size", "max-page-size");
   parser.AddInt("padding", &baking.charts.padding, "Texels around each chart.");
   parser.AddCustom("fusion-memory", std::to_string(baking.fusion.memory_limit_bytes >> 20),
-                   "MiB for the per-texel sample buffers of one pass over the images; a larger atlas is done in\n"
-                   "      several passes.",
+                   "MiB for the texel table and per-texel sample buffers of one pass over the images; a larger\n"
+                   "      atlas is coloured in several passes, each over a part of the surface.",
                    [&baking](const std::string& text) {
                      baking.fusion.memory_limit_bytes = ParseMebibytes("fusion-memory", text);
                    });

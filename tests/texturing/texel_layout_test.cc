@@ -96,6 +96,31 @@ void ExpectConsistentLayout(const TexelLayout& layout, const std::vector<Texture
   }
 }
 
+// `count` charts of 34 x 34 texels, each of `faces_per_chart` random triangles (some slivers); faces are
+// numbered chart after chart.
+std::vector<TextureChart> RandomCharts(unsigned seed, int count, int faces_per_chart) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> coordinate(3.0f, 30.0f);
+  std::vector<TextureChart> charts;
+  std::uint32_t face = 0;
+  for (int c = 0; c < count; ++c) {
+    TextureChart chart;
+    chart.width = chart.height = 34;
+    for (int i = 0; i < faces_per_chart; ++i) {
+      chart.faces.push_back(face++);
+      for (int k = 0; k < 3; ++k) chart.corner_texels.emplace_back(coordinate(random), coordinate(random));
+    }
+    charts.push_back(chart);
+  }
+  return charts;
+}
+
+std::vector<cv::Size> Rectangles(const std::vector<TextureChart>& charts) {
+  std::vector<cv::Size> rectangles;
+  for (const TextureChart& chart : charts) rectangles.emplace_back(chart.width, chart.height);
+  return rectangles;
+}
+
 TEST(RasterizeTexels, WithoutGutterEveryTexelInsideTheChartShowsThePointUnderItsCentre) {
   const std::vector<TextureChart> charts = {SquareChart(0, 1)};
   AtlasLayout atlas;
@@ -189,22 +214,9 @@ TEST(RasterizeTexels, TexelsAreOrderedChartByChartAndFaceByFace) {
 
 TEST(RasterizeTexels, TheResultDoesNotDependOnTheThreadCount) {
   // Charts of random triangles (some slivers), packed into a few pages.
-  std::mt19937 random(7);
-  std::uniform_real_distribution<float> coordinate(3.0f, 30.0f);
-  std::vector<TextureChart> charts;
-  std::vector<cv::Size> rectangles;
-  std::uint32_t face = 0;
-  for (int c = 0; c < 24; ++c) {
-    TextureChart chart;
-    chart.width = chart.height = 34;
-    for (int i = 0; i < 3; ++i) {
-      chart.faces.push_back(face++);
-      for (int k = 0; k < 3; ++k) chart.corner_texels.emplace_back(coordinate(random), coordinate(random));
-    }
-    rectangles.emplace_back(chart.width, chart.height);
-    charts.push_back(chart);
-  }
-  const AtlasLayout atlas = PackAtlas(rectangles, 128);
+  const std::vector<TextureChart> charts = RandomCharts(7, 24, 3);
+  const std::uint32_t face = 24 * 3;
+  const AtlasLayout atlas = PackAtlas(Rectangles(charts), 128);
   const TexelLayout one = RasterizeTexels(charts, atlas, face, 2.0, 1);
   const TexelLayout several = RasterizeTexels(charts, atlas, face, 2.0, 3);
   ExpectConsistentLayout(one, charts, atlas, face, /*overlapping_faces=*/true);
@@ -216,6 +228,36 @@ TEST(RasterizeTexels, TheResultDoesNotDependOnTheThreadCount) {
     const AtlasTexel& b = several.texels[t];
     ASSERT_TRUE(a.face == b.face && a.page == b.page && a.x == b.x && a.y == b.y && a.b1 == b.b1 && a.b2 == b.b2)
         << "texel " << t;
+  }
+}
+
+TEST(RasterizeTexels, ABatchOfChartsGetsTheTexelsTheWholeAtlasGivesThem) {
+  const std::vector<TextureChart> charts = RandomCharts(11, 12, 2);
+  const std::uint32_t face = 12 * 2;
+  const AtlasLayout atlas = PackAtlas(Rectangles(charts), 128);
+  const TexelLayout whole = RasterizeTexels(charts, atlas, face, 2.0, 2);
+  const std::vector<std::size_t> counts = CountChartTexels(charts, 2.0, 2);
+  ASSERT_EQ(counts.size(), charts.size());
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    EXPECT_EQ(counts[c], whole.chart_offsets[c + 1] - whole.chart_offsets[c]) << "chart " << c;
+  }
+  // Charts 7, 2 and 9, in that order: each chart's texels are the whole atlas's, and the faces of the
+  // other charts have none.
+  const std::vector<std::size_t> batch = {7, 2, 9};
+  const TexelLayout part = RasterizeTexels(charts, atlas, batch, face, 2.0, 2);
+  ASSERT_EQ(part.chart_offsets.size(), batch.size() + 1);
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    const std::size_t c = batch[i];
+    ASSERT_EQ(part.chart_offsets[i + 1] - part.chart_offsets[i], counts[c]);
+    for (std::size_t k = 0; k < counts[c]; ++k) {
+      const AtlasTexel& a = part.texels[part.chart_offsets[i] + k];
+      const AtlasTexel& b = whole.texels[whole.chart_offsets[c] + k];
+      ASSERT_TRUE(a.face == b.face && a.page == b.page && a.x == b.x && a.y == b.y && a.b1 == b.b1 && a.b2 == b.b2);
+    }
+  }
+  for (std::uint32_t f = 0; f < face; ++f) {
+    const bool in_batch = f / 2 == 7 || f / 2 == 2 || f / 2 == 9;
+    EXPECT_EQ(part.face_ranges[f].second > part.face_ranges[f].first, in_batch && whole.face_ranges[f].second > whole.face_ranges[f].first);
   }
 }
 
