@@ -1,6 +1,7 @@
 #include "texturing/texture_fill.h"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace lutex {
@@ -13,15 +14,19 @@ struct Level {
   cv::Mat weight;  // CV_32F
 };
 
-Level Downsample(const Level& fine) {
+// The next coarser level of a fine level `rows` x `cols` whose texel (row, col) has premultiplied colour
+// and weight `fine_texel(row, col)`.
+template <typename FineTexel>
+Level Downsample(int fine_rows, int fine_cols, FineTexel fine_texel) {
   Level coarse;
-  const int rows = (fine.colour.rows + 1) / 2, cols = (fine.colour.cols + 1) / 2;
+  const int rows = (fine_rows + 1) / 2, cols = (fine_cols + 1) / 2;
   coarse.colour = cv::Mat(rows, cols, CV_32FC3, cv::Scalar::all(0));
   coarse.weight = cv::Mat(rows, cols, CV_32F, cv::Scalar(0));
-  for (int row = 0; row < fine.colour.rows; ++row) {
-    for (int col = 0; col < fine.colour.cols; ++col) {
-      coarse.colour.at<cv::Vec3f>(row / 2, col / 2) += fine.colour.at<cv::Vec3f>(row, col);
-      coarse.weight.at<float>(row / 2, col / 2) += fine.weight.at<float>(row, col);
+  for (int row = 0; row < fine_rows; ++row) {
+    for (int col = 0; col < fine_cols; ++col) {
+      const auto [colour, weight] = fine_texel(row, col);
+      coarse.colour.at<cv::Vec3f>(row / 2, col / 2) += colour;
+      coarse.weight.at<float>(row / 2, col / 2) += weight;
     }
   }
   // Normalise so a level's weights stay in [0, 1] (a block fully known has weight 1).
@@ -35,6 +40,12 @@ Level Downsample(const Level& fine) {
     }
   }
   return coarse;
+}
+
+Level Downsample(const Level& fine) {
+  return Downsample(fine.colour.rows, fine.colour.cols, [&fine](int row, int col) {
+    return std::pair<cv::Vec3f, float>(fine.colour.at<cv::Vec3f>(row, col), fine.weight.at<float>(row, col));
+  });
 }
 
 // Bilinear sample of a coarse level's normalised colour at the centre of fine texel (row, col).
@@ -60,23 +71,25 @@ cv::Vec3f SampleCoarse(const Level& coarse, int row, int col) {
 
 void FillUnknownTexels(cv::Mat& page) {
   CV_Assert(page.type() == CV_32FC3);
-  std::vector<Level> pyramid(1);
-  pyramid[0].colour = cv::Mat(page.size(), CV_32FC3, cv::Scalar::all(0));
-  pyramid[0].weight = cv::Mat(page.size(), CV_32F, cv::Scalar(0));
-  bool any_known = false;
+  // The page itself is the finest level (a known texel has weight 1, an unknown one 0), so the pyramid
+  // costs a third of the page, not a copy of it.
+  bool any_known = false, any_unknown = false;
   for (int row = 0; row < page.rows; ++row) {
     for (int col = 0; col < page.cols; ++col) {
-      const cv::Vec3f& value = page.at<cv::Vec3f>(row, col);
-      if (std::isnan(value[0])) continue;
-      pyramid[0].colour.at<cv::Vec3f>(row, col) = value;
-      pyramid[0].weight.at<float>(row, col) = 1.0f;
-      any_known = true;
+      (std::isnan(page.at<cv::Vec3f>(row, col)[0]) ? any_unknown : any_known) = true;
     }
   }
   if (!any_known) {
     page.setTo(cv::Scalar::all(0));
     return;
   }
+  if (!any_unknown) return;
+  std::vector<Level> pyramid;
+  pyramid.push_back(Downsample(page.rows, page.cols, [&page](int row, int col) {
+    const cv::Vec3f& value = page.at<cv::Vec3f>(row, col);
+    return std::isnan(value[0]) ? std::pair<cv::Vec3f, float>(cv::Vec3f(0, 0, 0), 0.0f)
+                                : std::pair<cv::Vec3f, float>(value, 1.0f);
+  }));
   while (pyramid.back().colour.rows > 1 || pyramid.back().colour.cols > 1) pyramid.push_back(Downsample(pyramid.back()));
   // Push: from the coarsest level down, blend each level's own colour (by its weight) with the level above.
   for (std::size_t level = pyramid.size() - 1; level-- > 0;) {
@@ -92,10 +105,11 @@ void FillUnknownTexels(cv::Mat& page) {
       }
     }
   }
+  // The page's unknown texels (weight 0) take the level above's colour.
   for (int row = 0; row < page.rows; ++row) {
     for (int col = 0; col < page.cols; ++col) {
       cv::Vec3f& value = page.at<cv::Vec3f>(row, col);
-      if (std::isnan(value[0])) value = pyramid[0].colour.at<cv::Vec3f>(row, col);
+      if (std::isnan(value[0])) value = SampleCoarse(pyramid[0], row, col);
     }
   }
 }
