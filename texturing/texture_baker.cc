@@ -92,6 +92,39 @@ ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const 
 
 namespace {
 
+// The batches of charts that BakeLabelledFaces lays out and fuses together, each of at most
+// `texels_per_batch` texels (a larger chart alone): all charts at once when their rectangles fit, else
+// batches of neighbours along the surface (spatial_batches.h) by each chart's exact texel count and its
+// centroid with faces weighed by their area in texels, where its texels are.
+std::vector<std::vector<std::size_t>> PlanChartBatches(const Mesh& mesh, const std::vector<TextureChart>& charts,
+                                                       double gutter, std::size_t texels_per_batch, int num_threads) {
+  std::size_t rectangle_texels = 0;  // bounds the charts' texels from above
+  for (const TextureChart& chart : charts) {
+    rectangle_texels += static_cast<std::size_t>(chart.width) * static_cast<std::size_t>(chart.height);
+  }
+  if (rectangle_texels <= texels_per_batch) {
+    std::vector<std::size_t> all(charts.size());
+    for (std::size_t c = 0; c < charts.size(); ++c) all[c] = c;
+    return charts.empty() ? std::vector<std::vector<std::size_t>>() : std::vector<std::vector<std::size_t>>{all};
+  }
+  Eigen::AlignedBox3d bounds;
+  for (const Eigen::Vector3d& vertex : mesh.vertices) bounds.extend(vertex);
+  std::vector<Eigen::Vector3d> centroids(charts.size(), Eigen::Vector3d::Zero());
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    double total = 0.0;
+    for (std::size_t i = 0; i < charts[c].faces.size(); ++i) {
+      const Eigen::Vector2f* corner = &charts[c].corner_texels[3 * i];
+      const Eigen::Vector2f a = corner[1] - corner[0], b = corner[2] - corner[0];
+      const double texels = 0.5 * std::abs(double(a.x()) * b.y() - double(a.y()) * b.x()) + 1e-6;
+      const Mesh::Face& face = mesh.faces[charts[c].faces[i]];
+      centroids[c] += texels / 3.0 * (mesh.vertices[face[0]] + mesh.vertices[face[1]] + mesh.vertices[face[2]]);
+      total += texels;
+    }
+    if (total > 0.0) centroids[c] /= total;
+  }
+  return BatchAlongMortonCurve(centroids, CountChartTexels(charts, gutter, num_threads), bounds, texels_per_batch);
+}
+
 // Steps 3 to 7 for the faces whose label is not kNoView: the pages, and each face's page and corner
 // texels (by face of `mesh`) written into `textured`, whose mesh is left to the caller. `source_vertex`
 // as for ApplySeamCorrections (seam_levelling.h).
@@ -122,32 +155,15 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
     textured.pages.emplace_back(size, CV_32FC3, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
     summary.page_texels += static_cast<std::size_t>(size.area());
   }
-  Eigen::AlignedBox3d bounds;
-  for (const Eigen::Vector3d& vertex : mesh.vertices) bounds.extend(vertex);
-  // Each chart's centroid weighs its faces by their area in texels, where its texels are.
-  std::vector<Eigen::Vector3d> centroids(charts.size(), Eigen::Vector3d::Zero());
-  for (std::size_t c = 0; c < charts.size(); ++c) {
-    double total = 0.0;
-    for (std::size_t i = 0; i < charts[c].faces.size(); ++i) {
-      const Eigen::Vector2f* corner = &charts[c].corner_texels[3 * i];
-      const Eigen::Vector2f a = corner[1] - corner[0], b = corner[2] - corner[0];
-      const double texels = 0.5 * std::abs(double(a.x()) * b.y() - double(a.y()) * b.x()) + 1e-6;
-      const Mesh::Face& face = mesh.faces[charts[c].faces[i]];
-      centroids[c] += texels / 3.0 * (mesh.vertices[face[0]] + mesh.vertices[face[1]] + mesh.vertices[face[2]]);
-      total += texels;
-    }
-    if (total > 0.0) centroids[c] /= total;
-  }
-  const auto counting_start = std::chrono::steady_clock::now();
-  const std::vector<std::size_t> chart_texels = CountChartTexels(charts, options.gutter, options.num_threads);
-  double seconds_rasterising = SecondsSince(counting_start);
   TexelFusionOptions fusion = options.fusion;
   fusion.num_threads = options.num_threads;
   fusion.show_progress = fusion.show_progress && show_progress;
   const std::size_t texels_per_batch =
       std::max<std::size_t>(1, fusion.memory_limit_bytes / (sizeof(AtlasTexel) + FusionBytesPerTexel()));
+  const auto counting_start = std::chrono::steady_clock::now();
   const std::vector<std::vector<std::size_t>> batches =
-      BatchAlongMortonCurve(centroids, chart_texels, bounds, texels_per_batch);
+      PlanChartBatches(mesh, charts, options.gutter, texels_per_batch, options.num_threads);
+  double seconds_rasterising = SecondsSince(counting_start);
   if (show_progress) {
     LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages"
               << (batches.size() > 1 ? ", coloured in " + std::to_string(batches.size()) + " parts" : "");
