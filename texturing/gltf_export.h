@@ -20,8 +20,13 @@
 //   the root node's inverse applied to glTF's.
 // - Vertices are split where one mesh vertex has different texture coordinates in different charts.
 //
-// .glb: one binary file, images embedded through buffer views. .gltf: JSON with buffers and images
-// embedded as base64 data URIs (one self-contained file, about a third larger).
+// - With GltfOptions::meshopt_compression, positions, normals, texture coordinates and indices are
+//   compressed losslessly with EXT_meshopt_compression (meshopt_streams.h), listed as required: viewers
+//   without a decoder refuse the file rather than show it wrong. CesiumJS decodes it natively, three.js
+//   with GLTFLoader.setMeshoptDecoder. The texture pages, most of a textured model's bytes, stay PNG.
+//
+// .glb: one binary file, images embedded through buffer views (glb_container.h). .gltf: JSON with buffers
+// and images embedded as base64 data URIs (one self-contained file, about a third larger).
 
 #include <filesystem>
 #include <ostream>
@@ -30,11 +35,19 @@
 
 namespace lutex {
 
+struct GltfOptions {
+  // EXT_meshopt_compression for the geometry (.glb only).
+  bool meshopt_compression = false;
+  // Throws std::invalid_argument naming `path` when it cannot hold what these options ask for; commands
+  // call it before any work.
+  void CheckOutput(const std::filesystem::path& path) const;
+};
+
 // Throws std::runtime_error naming `path` when it cannot be written; writes a temporary file and renames
 // it, so a failure leaves no partial output.
-void WriteGltf(const TexturedMesh& textured, const std::filesystem::path& path);
+void WriteGltf(const TexturedMesh& textured, const std::filesystem::path& path, const GltfOptions& options = {});
 
 // The same into a stream (binary GLB or JSON).
-void WriteGltf(const TexturedMesh& textured, std::ostream& stream, bool binary);
+void WriteGltf(const TexturedMesh& textured, std::ostream& stream, bool binary, const GltfOptions& options = {});
 
 }  // namespace lutex

@@ -19,12 +19,14 @@ void CheckTexturedMeshPath(const fs::path& path) {
   }
 }
 
-std::vector<fs::path> WriteTexturedMesh(const TexturedMesh& textured, const fs::path& path, ImageEncoding page_encoding) {
+std::vector<fs::path> WriteTexturedMesh(const TexturedMesh& textured, const fs::path& path, ImageEncoding page_encoding,
+                                        const GltfOptions& gltf) {
   CheckTexturedMeshPath(path);
+  gltf.CheckOutput(path);
   const std::string extension = path.extension().string();
   std::vector<fs::path> written{path};
   if (extension == ".glb" || extension == ".gltf") {
-    WriteGltf(textured, path);
+    WriteGltf(textured, path, gltf);
   } else if (extension == ".obj") {
     WriteObj(textured, path, page_encoding);
     fs::path material = path;

@@ -45,6 +45,15 @@ int RunTextureCommand(int argc, char** argv) {
 
 void AddTextureStageOptions(OptionParser& parser, TextureOptions* options) {
   AddBakingOptions(parser, &options->baking, &options->views.ignore_confidence, &options->up_axis);
+  AddGltfOptions(parser, &options->gltf);
+}
+
+void AddGltfOptions(OptionParser& parser, GltfOptions* gltf) {
+  parser.AddFlag("meshopt-compression", &gltf->meshopt_compression,
+                 "Compress the GLB's geometry losslessly with EXT_meshopt_compression (CesiumJS, three.js with\n"
+                 "      its MeshoptDecoder, Babylon.js and gltfpack read it; viewers without a decoder refuse the\n"
+                 "      file). Positions, normals, texture coordinates and indices shrink to 35-60 % of their size;\n"
+                 "      the PNG texture pages, most of a textured model's bytes, do not change.");
 }
 
 void AddBakingOptions(OptionParser& parser, TextureBakingOptions* baking_options, bool* ignore_confidence,

@@ -18,6 +18,9 @@ void AddTextureStageOptions(OptionParser& parser, TextureOptions* options);
 
 // The same for any baking stage (texture, tiles): how to bake, whether to trust the confidence maps, and
 // the model's up.
+// --meshopt-compression.
+void AddGltfOptions(OptionParser& parser, GltfOptions* gltf);
+
 void AddBakingOptions(OptionParser& parser, TextureBakingOptions* baking, bool* ignore_confidence, std::string* up_axis);
 
 // Registers how views are chosen and fused (--blend, --view-smoothness, --max-views-per-face): the

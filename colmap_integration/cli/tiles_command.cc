@@ -36,6 +36,7 @@ int RunTilesCommand(int argc, char** argv) {
   AddMemoryLimitOption(parser, &options.memory_limit_bytes);
   AddGeoreferenceOptions(parser, &options.georeference);
   AddBakingOptions(parser, &options.baking, &options.views.ignore_confidence, &options.up_axis);
+  AddGltfOptions(parser, &options.gltf);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] { PrintTilesSummary(std::cout, TilesWorkspace(options)); });
   return 0;

@@ -284,6 +284,7 @@ class DiveRun {
     tiles.baking = options_.texture.baking;
     tiles.baking.num_threads = options_.num_threads;
     tiles.up_axis = options_.texture.up_axis;
+    tiles.gltf = options_.texture.gltf;
     tiles.memory_limit_bytes = options_.memory_limit_bytes;
     const WorkspaceGeoreference georeference = ResolveGeoreference(tiles.georeference, workspace_);
     if (!georeference.georeference.IsSet()) {

@@ -24,6 +24,7 @@ void TextureOptions::Check() const {
   if (workspace.empty()) throw OptionError("{workspace} is required");
   if (mesh.empty()) throw OptionError("{mesh} is required");
   if (!output.empty()) CheckTexturedMeshPath(output);
+  if (!output.empty()) gltf.CheckOutput(output);
   if (page_encoding == ImageEncoding::kFloat) throw std::invalid_argument("pages are srgb8 or linear16");
   CheckUpAxis(up_axis);
   baking.Check();
@@ -80,7 +81,7 @@ TextureSummary TextureWorkspace(const TextureOptions& options, const LoadedDive&
   summary.baking = result.summary;
   result.textured.up = summary.up.up;
   result.textured.georeference = summary.georeference.georeference;
-  summary.written = WriteTexturedMesh(result.textured, output, options.page_encoding);
+  summary.written = WriteTexturedMesh(result.textured, output, options.page_encoding, options.gltf);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

@@ -18,6 +18,7 @@
 #include "colmap_integration/stages/workspace_georeference.h"
 #include "colmap_integration/stages/workspace_views.h"
 #include "lib/image/image_io.h"
+#include "texturing/gltf_export.h"
 #include "texturing/texture_baker.h"
 
 namespace lutex {
@@ -29,6 +30,7 @@ struct TextureOptions {
   std::filesystem::path output;  // empty: W/lutex/model.glb
   // Encoding of OBJ/PLY pages (glTF pages are always 8-bit sRGB).
   ImageEncoding page_encoding = ImageEncoding::kSrgb8;
+  GltfOptions gltf;  // for a .glb output: EXT_meshopt_compression
   TextureBakingOptions baking;
   // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
   // available memory. The estimate counts the fusion's budget (baking.fusion.memory_limit_bytes) and the

@@ -115,7 +115,7 @@ class TileBaker {
     textured.up = frame_.up;
     textured.georeference = frame_.georeference;
     const std::string uri = node.name + ".glb";
-    WriteGltf(textured, folder_ / uri);
+    WriteGltf(textured, folder_ / uri, options_.gltf);
     summary_.max_tile_faces = std::max(summary_.max_tile_faces, textured.mesh.faces.size());
     TilesetTile& tile = tileset_.tiles[node_index];
     tile.box = baked.box;

@@ -30,6 +30,7 @@
 #include "colmap_integration/stages/model_up.h"
 #include "colmap_integration/stages/workspace_georeference.h"
 #include "colmap_integration/stages/workspace_views.h"
+#include "texturing/gltf_export.h"
 #include "texturing/texture_baker.h"
 #include "texturing/tile_tree.h"
 
@@ -41,6 +42,7 @@ struct TilesOptions {
   WorkspaceViewsOptions views;
   std::filesystem::path output;  // the folder; empty: W/lutex/tiles
   TextureBakingOptions baking;
+  GltfOptions gltf;  // of every tile's GLB
   TileTreeOptions tree;
   std::string up_axis = "auto";  // as for `lutex texture`
   GeoreferenceOptions georeference;

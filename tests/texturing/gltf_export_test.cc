@@ -2,11 +2,16 @@
 
 #include "texturing/gltf_export.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "lib/geometry/mesh_io.h"
@@ -147,18 +152,172 @@ TEST(GltfExport, GlbHoldsTheMeshLocallyWithTheOriginInTheRootNode) {
 
 TEST(GltfExport, TheValidatorFindsNoErrorsOrWarnings) {
   testing::TempDir dir;
-  // 8 x 8 cells: 16-bit indices; 260 x 260 cells: 68,121 vertices, 32-bit indices.
+  // 8 x 8 cells: 16-bit indices; 260 x 260 cells: 68,121 vertices, 32-bit indices. The validator cannot
+  // decode EXT_meshopt_compression (an info says so), but checks everything around it.
   for (const int cells : {8, 260}) {
     const TexturedMesh textured = GradientGrid(cells);
-    for (const char* name : {"model.glb", "model.gltf"}) {
+    for (const char* name : {"model.glb", "model.gltf", "model_meshopt.glb"}) {
       const std::filesystem::path path = dir.path() / (std::to_string(cells) + name);
-      WriteGltf(textured, path);
+      GltfOptions options;
+      options.meshopt_compression = std::string(name).find("meshopt") != std::string::npos;
+      WriteGltf(textured, path, options);
       const testing::GltfValidation validation = testing::ValidateGltf(path);
       ASSERT_TRUE(validation.ran) << validation.output;
       EXPECT_TRUE(validation.valid) << path << "\n" << validation.output;
       EXPECT_NE(validation.output.find("errors=0 warnings=0"), std::string::npos) << validation.output;
     }
   }
+}
+
+// A GLB's JSON and BIN chunks, read by the spec (glTF 2.0, 4.4), not by the writer's code.
+struct GlbChunks {
+  nlohmann::json json;
+  std::vector<unsigned char> bin;
+};
+
+GlbChunks SplitGlb(const std::string& bytes) {
+  const auto word = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    std::memcpy(&value, bytes.data() + at, 4);
+    return value;
+  };
+  GlbChunks chunks;
+  EXPECT_EQ(word(0), 0x46546C67u);  // "glTF"
+  EXPECT_EQ(word(4), 2u);
+  EXPECT_EQ(word(8), bytes.size());
+  const std::uint32_t json_length = word(12);
+  EXPECT_EQ(word(16), 0x4E4F534Au);  // "JSON"
+  chunks.json = nlohmann::json::parse(bytes.substr(20, json_length));
+  const std::size_t bin_at = 20 + json_length;
+  if (bin_at < bytes.size()) {
+    EXPECT_EQ(word(bin_at + 4), 0x004E4942u);  // "BIN"
+    chunks.bin.assign(bytes.begin() + static_cast<long>(bin_at + 8), bytes.begin() + static_cast<long>(bin_at + 8 + word(bin_at)));
+  }
+  return chunks;
+}
+
+std::string GlbBytes(const TexturedMesh& textured, bool meshopt) {
+  GltfOptions options;
+  options.meshopt_compression = meshopt;
+  std::ostringstream stream;
+  WriteGltf(textured, stream, /*binary=*/true, options);
+  return stream.str();
+}
+
+// Each triangle of 16- or 32-bit indices rotated to start at its lowest index (same winding): meshopt's
+// index codec may rotate triangles.
+std::vector<std::uint32_t> CanonicalTriangles(const std::vector<unsigned char>& bytes, std::size_t stride) {
+  std::vector<std::uint32_t> indices(bytes.size() / stride);
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    std::uint16_t short_index = 0;
+    if (stride == 2) {
+      std::memcpy(&short_index, bytes.data() + 2 * i, 2);
+      indices[i] = short_index;
+    } else {
+      std::memcpy(&indices[i], bytes.data() + 4 * i, 4);
+    }
+  }
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+    while (indices[t] > indices[t + 1] || indices[t] > indices[t + 2]) std::rotate(&indices[t], &indices[t + 1], &indices[t + 3]);
+  }
+  return indices;
+}
+
+// The bytes buffer view `index` stands for: in buffer 0, or decoded from its EXT_meshopt_compression stream.
+std::vector<unsigned char> ViewBytes(const GlbChunks& glb, std::size_t index) {
+  const nlohmann::json& view = glb.json["bufferViews"][index];
+  const std::size_t length = view["byteLength"];
+  std::vector<unsigned char> bytes(length);
+  if (!view.contains("extensions")) {
+    EXPECT_EQ(view["buffer"], 0);
+    const std::size_t offset = view.value("byteOffset", std::size_t{0});
+    std::memcpy(bytes.data(), glb.bin.data() + offset, length);
+    return bytes;
+  }
+  const nlohmann::json& meshopt = view["extensions"]["EXT_meshopt_compression"];
+  const std::size_t count = meshopt["count"], stride = meshopt["byteStride"];
+  EXPECT_EQ(count * stride, length);
+  const unsigned char* compressed = glb.bin.data() + meshopt.value("byteOffset", std::size_t{0});
+  const std::size_t compressed_length = meshopt["byteLength"];
+  const int status = meshopt["mode"] == "TRIANGLES"
+                         ? meshopt_decodeIndexBuffer(bytes.data(), count, stride, compressed, compressed_length)
+                         : meshopt_decodeVertexBuffer(bytes.data(), count, stride, compressed, compressed_length);
+  EXPECT_EQ(status, 0) << "view " << index << " does not decode";
+  return bytes;
+}
+
+TEST(GltfExport, MeshoptCompressionDecodesToTheSameGeometryInFewerBytes) {
+  // 8 x 8 cells: 16-bit indices; 260 x 260 cells: 68,121 vertices, 32-bit indices.
+  for (const int cells : {8, 260}) {
+    const TexturedMesh textured = GradientGrid(cells);
+    const GlbChunks plain = SplitGlb(GlbBytes(textured, false));
+    const GlbChunks compressed = SplitGlb(GlbBytes(textured, true));
+    const nlohmann::json& json = compressed.json;
+    ASSERT_EQ(json["extensionsRequired"], nlohmann::json::array({"EXT_meshopt_compression"}));
+    EXPECT_NE(std::find(json["extensionsUsed"].begin(), json["extensionsUsed"].end(), "EXT_meshopt_compression"),
+              json["extensionsUsed"].end());
+    // Buffer 0 is the BIN chunk; buffer 1 the fallback the decoder fills, with a length and no data.
+    ASSERT_EQ(json["buffers"].size(), 2u);
+    // (The BIN chunk is padded to 4 bytes.)
+    EXPECT_EQ(json["buffers"][0].size(), 1u);
+    EXPECT_LE(std::size_t(json["buffers"][0]["byteLength"]), compressed.bin.size());
+    EXPECT_GT(std::size_t(json["buffers"][0]["byteLength"]) + 4, compressed.bin.size());
+    EXPECT_EQ(json["buffers"][1]["extensions"]["EXT_meshopt_compression"]["fallback"], true);
+    EXPECT_FALSE(json["buffers"][1].contains("uri"));
+    // Everything but the buffers and views is the uncompressed file's: accessors, meshes, nodes, images.
+    for (const char* key : {"accessors", "meshes", "nodes", "materials", "images", "textures", "asset"}) {
+      EXPECT_EQ(json[key], plain.json[key]) << key;
+    }
+    // Every view holds the uncompressed file's bytes (triangles possibly rotated), and the geometry's views
+    // are compressed.
+    ASSERT_EQ(json["bufferViews"].size(), plain.json["bufferViews"].size());
+    std::size_t raw_geometry = 0, compressed_geometry = 0;
+    for (std::size_t v = 0; v < json["bufferViews"].size(); ++v) {
+      const nlohmann::json& view = json["bufferViews"][v];
+      const bool geometry = plain.json["bufferViews"][v].contains("target");
+      if (geometry && view["target"] == 34963) {
+        const std::size_t stride = view["extensions"]["EXT_meshopt_compression"]["byteStride"];
+        EXPECT_EQ(CanonicalTriangles(ViewBytes(compressed, v), stride), CanonicalTriangles(ViewBytes(plain, v), stride))
+            << "view " << v << ", " << cells << " cells";
+      } else {
+        EXPECT_EQ(ViewBytes(compressed, v), ViewBytes(plain, v)) << "view " << v << ", " << cells << " cells";
+      }
+      EXPECT_EQ(view.contains("extensions"), geometry) << "view " << v;
+      if (!geometry) continue;
+      EXPECT_EQ(view["buffer"], 1);
+      EXPECT_EQ(view.value("byteOffset", std::size_t{0}) % 4, 0u);
+      EXPECT_LE(view.value("byteOffset", std::size_t{0}) + std::size_t(view["byteLength"]),
+                std::size_t(json["buffers"][1]["byteLength"]));
+      // Vertex attributes say their stride; index views must not (glTF 3.6.2.4).
+      EXPECT_EQ(view.contains("byteStride"), view["target"] == 34962) << "view " << v;
+      raw_geometry += std::size_t(view["byteLength"]);
+      compressed_geometry += std::size_t(view["extensions"]["EXT_meshopt_compression"]["byteLength"]);
+    }
+    std::printf("%d cells: geometry %zu bytes, compressed %zu (%.1f %%)\n", cells, raw_geometry, compressed_geometry,
+                100.0 * double(compressed_geometry) / double(raw_geometry));
+    // Floats compress less than quantised attributes would: about a third on the large grid.
+    EXPECT_LT(double(compressed_geometry), (cells > 100 ? 0.4 : 0.7) * double(raw_geometry)) << cells << " cells";
+  }
+}
+
+TEST(GltfExport, MeshoptCompressionIsRefusedForFormatsThatCannotHoldIt) {
+  GltfOptions meshopt;
+  meshopt.meshopt_compression = true;
+  EXPECT_NO_THROW(meshopt.CheckOutput("model.glb"));
+  for (const char* name : {"model.gltf", "model.obj", "model.ply"}) {
+    try {
+      meshopt.CheckOutput(name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(name), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("--meshopt-compression"), std::string::npos) << error.what();
+    }
+  }
+  EXPECT_NO_THROW(GltfOptions{}.CheckOutput("model.gltf"));
+  testing::TempDir dir;
+  EXPECT_THROW(WriteTexturedMesh(GradientGrid(2), dir.path() / "model.obj", ImageEncoding::kSrgb8, meshopt),
+               std::invalid_argument);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << "a refused format left files";
 }
 
 TEST(TexturedMeshIo, PlyKeepsFacesAndCornerTexcoordsWithVUp) {

@@ -145,6 +145,9 @@ std::vector<BadInput> Cases() {
       // fit (4 x 3 m at 1 mm is 12 Mtexels), and once packed, before any colour, when the charts do not.
       {"TexturedPlyTooLargeForOnePage", {}, "texture" + kDive + " --output {D}/out.ply --texel-size 0.001 --max-page-size 1024",
        "{D}/out.ply", "is a textured PLY, which holds one page; write a format without that limit, or raise --max-page-size"},
+      // EXT_meshopt_compression exists only for .glb: refused before any work.
+      {"MeshoptCompressionIntoGltfJson", {}, "texture" + kDive + " --output {D}/out.gltf --meshopt-compression", "{D}/out.gltf",
+       "EXT_meshopt_compression (--meshopt-compression) is written into .glb files only"},
       {"TexturedPlyChartsOnManyPages", {}, "texture" + kDive + " --output {D}/out.ply --max-page-size 128 --log-level error",
        "{D}/out.ply",
        "pages of up to 128 texels, but"},

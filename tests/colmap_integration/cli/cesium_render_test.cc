@@ -7,7 +7,8 @@
 // the globe, and scripts/cesium_viewer/render.html looks straight down at it with heading 0. The
 // screenshot must show a 4:3 rectangle with those colours in those corners: the root transform put the
 // tiles on the globe, level and north up, the glTF content's +Y up was turned to 3D Tiles' +Z up once (not
-// twice, not never), and the texture kept the seafloor's colours.
+// twice, not never), and the texture kept the seafloor's colours. The same tileset with its geometry
+// compressed (EXT_meshopt_compression) must look the same.
 //
 // Skips when chromium, python3 (the HTTP server) or scripts/cesium_viewer/node_modules is absent
 // (scripts/install_dependencies.sh installs them all).
@@ -68,12 +69,18 @@ std::string ReadText(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-TEST(CesiumRender, TheTilesetIsOnTheGlobeSeenFromAboveNorthUpInTheSeafloorsColours) {
-  if (!testing::HaveProgram("chromium")) GTEST_SKIP() << "chromium is not installed (scripts/install_dependencies.sh)";
-  if (!testing::HaveProgram("python3")) GTEST_SKIP() << "python3 is not installed (it serves the page)";
+// Empty when the viewer can run here, else why not (a reason to skip).
+std::string MissingViewer() {
+  if (!testing::HaveProgram("chromium")) return "chromium is not installed (scripts/install_dependencies.sh)";
+  if (!testing::HaveProgram("python3")) return "python3 is not installed (it serves the page)";
   if (!fs::exists(ViewerDir() / "node_modules" / "cesium" / "Build" / "Cesium" / "Cesium.js")) {
-    GTEST_SKIP() << "CesiumJS is not installed in " << ViewerDir().string() << " (scripts/install_dependencies.sh)";
+    return "CesiumJS is not installed in " + ViewerDir().string() + " (scripts/install_dependencies.sh)";
   }
+  return "";
+}
+
+// Bakes the quadrant seafloor's tileset with `gltf`, renders it and checks the screenshot.
+void ExpectTheTilesetFromAbove(const GltfOptions& gltf) {
   testing::TempDir dir;
   WriteMesh(QuadrantSeafloor(), dir.path() / "seafloor.ply");
   nlohmann::json scene = testing::SmallSurveyScene();
@@ -94,6 +101,7 @@ TEST(CesiumRender, TheTilesetIsOnTheGlobeSeenFromAboveNorthUpInTheSeafloorsColou
   tiles.views.image_encoding = ImageEncoding::kLinear16;
   tiles.output = site / "tiles";
   tiles.tree.max_faces = 300;
+  tiles.gltf = gltf;
   tiles.georeference.enu_origin = "-17.5,146.5,-12";  // the Great Barrier Reef: south of the equator, east
   const TilesSummary summary = TilesWorkspace(tiles);
   ASSERT_GE(summary.depth, 2);
@@ -119,11 +127,25 @@ TEST(CesiumRender, TheTilesetIsOnTheGlobeSeenFromAboveNorthUpInTheSeafloorsColou
   const cv::Rect bounds = testing::ExpectQuadrantsFromAbove(picture, 4.0 / 3.0, kQuadrants, "CesiumJS");
   EXPECT_NEAR(bounds.x + 0.5 * bounds.width, 0.5 * kWindowWidth, 15.0) << "not centred";
   EXPECT_NEAR(bounds.y + 0.5 * bounds.height, 0.5 * kWindowHeight, 15.0) << "not centred";
-  if (HasFailure() || std::getenv("LUTEX_KEEP_SCREENSHOTS")) {
-    const fs::path kept = fs::temp_directory_path() / "lutex_cesium_render.png";
+  const bool failed = ::testing::Test::HasFailure();
+  if (failed || std::getenv("LUTEX_KEEP_SCREENSHOTS")) {
+    const fs::path kept = fs::temp_directory_path() /
+                          (gltf.meshopt_compression ? "lutex_cesium_render_meshopt.png" : "lutex_cesium_render.png");
     fs::copy_file(screenshot, kept, fs::copy_options::overwrite_existing);
-    std::cout << "the screenshot is kept as " << kept.string() << "\n" << (HasFailure() ? diagnostics : "") << "\n";
+    std::cout << "the screenshot is kept as " << kept.string() << "\n" << (failed ? diagnostics : "") << "\n";
   }
+}
+
+TEST(CesiumRender, TheTilesetIsOnTheGlobeSeenFromAboveNorthUpInTheSeafloorsColours) {
+  if (const std::string missing = MissingViewer(); !missing.empty()) GTEST_SKIP() << missing;
+  ExpectTheTilesetFromAbove(GltfOptions{});
+}
+
+TEST(CesiumRender, AMeshoptCompressedTilesetLooksTheSame) {
+  if (const std::string missing = MissingViewer(); !missing.empty()) GTEST_SKIP() << missing;
+  GltfOptions gltf;
+  gltf.meshopt_compression = true;
+  ExpectTheTilesetFromAbove(gltf);
 }
 
 }  // namespace

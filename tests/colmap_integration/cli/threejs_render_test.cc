@@ -6,6 +6,7 @@
 // straight down glTF's -Y with glTF's -Z at the top of the screen, so a GLB that stands the model up as glTF
 // asks (+Y up, north on -Z) shows a 4:3 rectangle with those colours in those corners: seen from above (an
 // edge-on plane would be a line), north up, east right, not mirrored, the texture's sRGB kept (unlit).
+// The same GLB with its geometry compressed (EXT_meshopt_compression) must look the same.
 //
 // Skips when chromium, python3 (the HTTP server) or scripts/threejs_viewer/node_modules is absent
 // (scripts/install_dependencies.sh installs them all).
@@ -86,20 +87,25 @@ void ExpectThePlaneFromAbove(const cv::Mat& picture) {
   EXPECT_NEAR(double(bounds.width) / double(kWindowWidth), 0.9, 0.03) << "not framed to the window";
 }
 
-TEST(ThreeJsRender, TheGlbIsSeenFromAboveNorthUpInItsColours) {
-  if (!testing::HaveProgram("chromium")) GTEST_SKIP() << "chromium is not installed (scripts/install_dependencies.sh)";
-  if (!testing::HaveProgram("python3")) GTEST_SKIP() << "python3 is not installed (it serves the page)";
+// Empty when the viewer can run here, else why not (a reason to skip).
+std::string MissingViewer() {
+  if (!testing::HaveProgram("chromium")) return "chromium is not installed (scripts/install_dependencies.sh)";
+  if (!testing::HaveProgram("python3")) return "python3 is not installed (it serves the page)";
   if (!fs::exists(ViewerDir() / "node_modules" / "three" / "build" / "three.module.js")) {
-    GTEST_SKIP() << "three.js is not installed in " << ViewerDir().string() << " (scripts/install_dependencies.sh)";
+    return "three.js is not installed in " + ViewerDir().string() + " (scripts/install_dependencies.sh)";
   }
+  return "";
+}
 
+// Writes QuadrantPlane with `gltf`, renders it and checks the screenshot.
+void ExpectTheGlbFromAbove(const GltfOptions& gltf) {
   // The served folder: the viewer's page and three.js (linked, not copied) beside the model.
   testing::TempDir dir;
   const fs::path site = dir.path() / "site";
   fs::create_directories(site);
   fs::create_symlink(ViewerDir() / "render.html", site / "render.html");
   fs::create_directory_symlink(ViewerDir() / "node_modules", site / "node_modules");
-  WriteGltf(QuadrantPlane(), site / "model.glb");
+  WriteGltf(QuadrantPlane(), site / "model.glb", gltf);
 
   const fs::path server_log = dir.path() / "server.log";
   testing::LocalHttpServer server(site, server_log);
@@ -114,11 +120,23 @@ TEST(ThreeJsRender, TheGlbIsSeenFromAboveNorthUpInItsColours) {
 
   const cv::Mat picture = cv::imread(screenshot.string(), cv::IMREAD_COLOR);
   ExpectThePlaneFromAbove(picture);
-  if (HasFailure()) {
+  if (::testing::Test::HasFailure()) {
     const fs::path kept = fs::temp_directory_path() / "lutex_threejs_render_failed.png";
     fs::copy_file(screenshot, kept, fs::copy_options::overwrite_existing);
     std::cout << "the screenshot is kept as " << kept.string() << "\n" << diagnostics << "\n";
   }
+}
+
+TEST(ThreeJsRender, TheGlbIsSeenFromAboveNorthUpInItsColours) {
+  if (const std::string missing = MissingViewer(); !missing.empty()) GTEST_SKIP() << missing;
+  ExpectTheGlbFromAbove(GltfOptions{});
+}
+
+TEST(ThreeJsRender, AMeshoptCompressedGlbLooksTheSame) {
+  if (const std::string missing = MissingViewer(); !missing.empty()) GTEST_SKIP() << missing;
+  GltfOptions gltf;
+  gltf.meshopt_compression = true;
+  ExpectTheGlbFromAbove(gltf);
 }
 
 }  // namespace
