@@ -132,9 +132,10 @@ cv::Rect SampledWindow(const Mesh& mesh, const TextureView& view, const std::vec
   return cv::Rect(col0, row0, col1 - col0, row1 - row0);
 }
 
-// Samples `view` at the texels of `faces` into `samples`. `maps` may be a window of the view.
+// Samples `view` at the texels of `faces` into `samples`. `maps` may be a window of the view; `colour` and
+// `confidence` (empty: every pixel trusted) are the pixels of `window`.
 void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_index, const GeometryMaps& maps,
-                const cv::Mat& colour, const cv::Mat& confidence, const std::vector<PassFace>& faces,
+                const cv::Rect& window, const cv::Mat& colour, const cv::Mat& confidence, const std::vector<PassFace>& faces,
                 const TexelLayout& layout, std::vector<TexelSamples>& samples, std::vector<std::mutex>& locks) {
   const double focal = 0.5 * (view.camera.FocalLengthX() + view.camera.FocalLengthY());
   const double depth_tolerance = 0.01 + 2.0 / focal;  // relative: 1 % plus two pixels' slope at 45 degrees
@@ -154,7 +155,7 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
       if (!(point_in_cam.z() > 0.0)) continue;
       const Eigen::Vector2d pixel = view.camera.ImgFromCam(point_in_cam);
       const double u = pixel.x() - 0.5, v = pixel.y() - 0.5;
-      if (!(u > -1.0 && v > -1.0 && u < colour.cols && v < colour.rows)) continue;
+      if (!(u > -1.0 && v > -1.0 && u < double(view.camera.width) && v < double(view.camera.height))) continue;
       const int col0 = static_cast<int>(std::floor(u)), row0 = static_cast<int>(std::floor(v));
       const double fu = u - col0, fv = v - row0;
       Eigen::Vector3d colour_sum = Eigen::Vector3d::Zero();
@@ -164,13 +165,15 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
           const int col = col0 + dc, row = row0 + dr;
           const int map_col = col - maps.origin.x, map_row = row - maps.origin.y;
           if (map_col < 0 || map_row < 0 || map_col >= maps.depth.cols || map_row >= maps.depth.rows) continue;
+          const int window_col = col - window.x, window_row = row - window.y;
+          if (window_col < 0 || window_row < 0 || window_col >= colour.cols || window_row >= colour.rows) continue;
           const double w = (dc ? fu : 1.0 - fu) * (dr ? fv : 1.0 - fv);
           const float depth = maps.depth.at<float>(map_row, map_col);
           if (w <= 0.0 || !(std::abs(depth - point_in_cam.z()) <= depth_tolerance * point_in_cam.z())) continue;
-          const cv::Vec3f& value = colour.at<cv::Vec3f>(row, col);
+          const cv::Vec3f& value = colour.at<cv::Vec3f>(window_row, window_col);
           colour_sum += w * Eigen::Vector3d(value[0], value[1], value[2]);
           if (!confidence.empty()) {
-            const cv::Vec3f& c = confidence.at<cv::Vec3f>(row, col);
+            const cv::Vec3f& c = confidence.at<cv::Vec3f>(window_row, window_col);
             confidence_sum += w * (c[0] + c[1] + c[2]) / 3.0;
           } else {
             confidence_sum += w;
@@ -276,6 +279,10 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     for (std::size_t v = 0; v < views.size(); ++v) {
       if (!faces_of_view[v].empty()) used_views.push_back(v);
     }
+    // Views held in memory first (the order does not change the result: TexelSamples::Offer).
+    if (source.is_held) {
+      std::stable_partition(used_views.begin(), used_views.end(), [&](std::size_t v) { return source.is_held(v); });
+    }
     summary.views_read += used_views.size();
     std::vector<TexelSamples> samples(num_samples);
     std::optional<ProgressReporter> progress;
@@ -287,12 +294,18 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     }
     ParallelForOnWorkers(used_views.size(), options.num_threads, [&](std::size_t i, int worker) {
       const std::size_t v = used_views[i];
-      const cv::Mat colour = LoadViewImage(source, views, v);
-      const cv::Mat confidence = LoadViewConfidence(source, views, v);
+      // Only the rectangle the pass's faces project to is read, linearised and ray cast.
+      const cv::Rect window = SampledWindow(mesh, views[v], faces_of_view[v]);
+      if (window.empty()) {  // the faces project outside the image
+        if (progress) progress->Advance();
+        return;
+      }
+      const cv::Mat colour = LoadViewImage(source, views, v, window);
+      const cv::Mat confidence = LoadViewConfidence(source, views, v, window);
       GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
-      raycaster.Render(views[v], &maps, SampledWindow(mesh, views[v], faces_of_view[v]));
-      SampleView(mesh, views[v], static_cast<std::uint32_t>(v), maps, colour, confidence, faces_of_view[v], layout,
-                 samples, locks);
+      raycaster.Render(views[v], &maps, window);
+      SampleView(mesh, views[v], static_cast<std::uint32_t>(v), maps, window, colour, confidence, faces_of_view[v],
+                 layout, samples, locks);
       if (progress) progress->Advance();
     });
     if (progress) progress->Finish();

@@ -6,8 +6,9 @@ namespace lutex {
 
 namespace {
 
-void CheckViewPixels(const cv::Mat& pixels, const TextureView& view, const char* what) {
-  const cv::Size size(static_cast<int>(view.camera.width), static_cast<int>(view.camera.height));
+void CheckViewPixels(const cv::Mat& pixels, const TextureView& view, const cv::Rect& window, const char* what) {
+  const cv::Size size =
+      window.empty() ? cv::Size(static_cast<int>(view.camera.width), static_cast<int>(view.camera.height)) : window.size();
   if (pixels.size() != size || pixels.type() != CV_32FC3) {
     throw std::runtime_error(view.name + ": the " + what + " does not match the camera's size");
   }
@@ -15,16 +16,21 @@ void CheckViewPixels(const cv::Mat& pixels, const TextureView& view, const char*
 
 }  // namespace
 
-cv::Mat LoadViewImage(const ViewImageSource& source, const std::vector<TextureView>& views, std::size_t view_index) {
-  cv::Mat image = source.linear_rgb(view_index);
-  CheckViewPixels(image, views[view_index], "image");
+cv::Mat ViewWindow(const cv::Mat& image, const cv::Rect& window) {
+  return window.empty() ? image.clone() : image(window).clone();
+}
+
+cv::Mat LoadViewImage(const ViewImageSource& source, const std::vector<TextureView>& views, std::size_t view_index,
+                      const cv::Rect& window) {
+  cv::Mat image = source.linear_rgb(view_index, window);
+  CheckViewPixels(image, views[view_index], window, "image");
   return image;
 }
 
 cv::Mat LoadViewConfidence(const ViewImageSource& source, const std::vector<TextureView>& views,
-                           std::size_t view_index) {
-  cv::Mat confidence = source.confidence ? source.confidence(view_index) : cv::Mat();
-  if (!confidence.empty()) CheckViewPixels(confidence, views[view_index], "confidence map");
+                           std::size_t view_index, const cv::Rect& window) {
+  cv::Mat confidence = source.confidence ? source.confidence(view_index, window) : cv::Mat();
+  if (!confidence.empty()) CheckViewPixels(confidence, views[view_index], window, "confidence map");
   return confidence;
 }
 

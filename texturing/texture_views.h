@@ -27,23 +27,34 @@ struct TextureView {
   Rigid3d cam_from_world;
 };
 
-// Loads a view's pixels. Called from worker threads, at most one call per thread at a time.
+// Loads a view's pixels, or the pixels of a window of the view (a texturer that samples a few faces of
+// a 12 MP view needs their rectangle, not the image). Called from worker threads, at most one call per
+// thread at a time. `window` lies within the image; an empty window is the whole image.
 struct ViewImageSource {
-  // Linear RGB CV_32FC3 of the camera's size (restored albedo, or any linear image). Must throw naming
+  // Linear RGB CV_32FC3 of the window's size (restored albedo, or any linear image). Must throw naming
   // the file when it cannot be read or has the wrong size.
-  std::function<cv::Mat(std::size_t view_index)> linear_rgb;
-  // Per-channel confidence in [0, 1], CV_32FC3 of the camera's size, or an empty Mat when the view has
+  std::function<cv::Mat(std::size_t view_index, const cv::Rect& window)> linear_rgb;
+  // Per-channel confidence in [0, 1], CV_32FC3 of the window's size, or an empty Mat when the view has
   // none (every pixel is then trusted). May be left unset: no view has confidence.
-  std::function<cv::Mat(std::size_t view_index)> confidence;
+  std::function<cv::Mat(std::size_t view_index, const cv::Rect& window)> confidence;
+  // Whether the view's pixels are held in memory now, so that reading it is cheap (a cache): the fusion
+  // reads those first, before a read of another view can drop them. May be left unset: none is.
+  std::function<bool(std::size_t view_index)> is_held;
 };
 
-// The view's image from `source`; throws naming the view when it is not CV_32FC3 of the camera's size.
-cv::Mat LoadViewImage(const ViewImageSource& source, const std::vector<TextureView>& views, std::size_t view_index);
+// The pixels of `window` of an image held in memory (a copy; the whole image for an empty window): what
+// a ViewImageSource over images in memory returns.
+cv::Mat ViewWindow(const cv::Mat& image, const cv::Rect& window);
 
-// The view's confidence, or an empty Mat when the source has none for it; throws naming the view when it
-// is not CV_32FC3 of the camera's size.
+// The view's image (or window of it) from `source`; throws naming the view when it is not CV_32FC3 of
+// the window's size (the camera's for an empty window).
+cv::Mat LoadViewImage(const ViewImageSource& source, const std::vector<TextureView>& views, std::size_t view_index,
+                      const cv::Rect& window = cv::Rect());
+
+// The view's confidence (or window of it), or an empty Mat when the source has none for it; throws naming
+// the view when it is not CV_32FC3 of the window's size.
 cv::Mat LoadViewConfidence(const ViewImageSource& source, const std::vector<TextureView>& views,
-                           std::size_t view_index);
+                           std::size_t view_index, const cv::Rect& window = cv::Rect());
 
 // Ray casts views of one mesh. The ray table of each camera is built once, on first use, and shared by
 // every view with the same camera id (a dive usually has one camera).

@@ -1,6 +1,6 @@
 #pragma once
 
-// `lutex tiles`, and the tiling option `lutex run` shares.
+// `lutex tiles`, and the tiling options `lutex run` shares.
 
 #include "colmap_integration/cli/option_parser.h"
 #include "colmap_integration/stages/tiles_workspace.h"
@@ -12,5 +12,8 @@ int RunTilesCommand(int argc, char** argv);
 
 // Registers --tile-faces (options->tree.max_faces): a whole number of faces, at least 1.
 void AddTileFacesOption(OptionParser& parser, TilesOptions* options);
+
+// Registers --image-cache (options->picture_cache_bytes): MiB, 0 for none.
+void AddImageCacheOption(OptionParser& parser, TilesOptions* options);
 
 }  // namespace lutex

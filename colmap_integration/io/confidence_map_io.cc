@@ -25,7 +25,7 @@ void WriteConfidenceMap(const cv::Mat& confidence, const fs::path& path) {
   WriteEncodedImage(confidence_bgr, path);
 }
 
-cv::Mat ReadConfidenceMap(const fs::path& path, const Camera& camera) {
+cv::Mat ReadConfidenceMap(const fs::path& path, const Camera& camera, const cv::Rect& window) {
   const cv::Mat encoded = cv::imread(path.string(), cv::IMREAD_COLOR);
   if (encoded.empty()) throw std::runtime_error(path.string() + ": cannot read the confidence map");
   if (encoded.cols != static_cast<int>(camera.width) || encoded.rows != static_cast<int>(camera.height)) {
@@ -34,7 +34,7 @@ cv::Mat ReadConfidenceMap(const fs::path& path, const Camera& camera) {
                              "x" + std::to_string(camera.height));
   }
   cv::Mat rgb;
-  cv::cvtColor(encoded, rgb, cv::COLOR_BGR2RGB);
+  cv::cvtColor(window.empty() ? encoded : encoded(window), rgb, cv::COLOR_BGR2RGB);
   rgb.convertTo(rgb, CV_32FC3, 1.0 / 255.0);
   return rgb;
 }

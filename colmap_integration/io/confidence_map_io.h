@@ -19,8 +19,9 @@ std::filesystem::path ConfidenceMapPath(const std::filesystem::path& folder, con
 // Writes a CV_32FC3 RGB confidence in [0, 1] (temporary name, then rename).
 void WriteConfidenceMap(const cv::Mat& confidence, const std::filesystem::path& path);
 
-// Reads a confidence map as CV_32FC3 RGB in [0, 1]. Throws std::runtime_error naming the file when it
-// cannot be read or is not the camera's size.
-cv::Mat ReadConfidenceMap(const std::filesystem::path& path, const Camera& camera);
+// Reads a confidence map as CV_32FC3 RGB in [0, 1]: the pixels of `window` (within the image), or of the
+// whole image when it is empty. Throws std::runtime_error naming the file when it cannot be read or is
+// not the camera's size.
+cv::Mat ReadConfidenceMap(const std::filesystem::path& path, const Camera& camera, const cv::Rect& window = cv::Rect());
 
 }  // namespace lutex

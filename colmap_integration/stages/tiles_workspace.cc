@@ -143,9 +143,16 @@ class TileBaker {
     std::vector<TextureView> views;
     for (std::uint32_t v : chosen_views) views.push_back(views_[v]);
     ViewImageSource source;
-    source.linear_rgb = [this, chosen_views](std::size_t i) { return source_.linear_rgb(chosen_views[i]); };
+    source.linear_rgb = [this, chosen_views](std::size_t i, const cv::Rect& window) {
+      return source_.linear_rgb(chosen_views[i], window);
+    };
     if (source_.confidence) {
-      source.confidence = [this, chosen_views](std::size_t i) { return source_.confidence(chosen_views[i]); };
+      source.confidence = [this, chosen_views](std::size_t i, const cv::Rect& window) {
+        return source_.confidence(chosen_views[i], window);
+      };
+    }
+    if (source_.is_held) {
+      source.is_held = [this, chosen_views](std::size_t i) { return source_.is_held(chosen_views[i]); };
     }
     TextureBakingOptions baking = options_.baking;
     baking.charts.texel_size = texel_size;
@@ -187,12 +194,16 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
+  MemoryEstimate baking_memory = TextureBakingMemory(options.baking, dive.mesh().faces.size());
+  baking_memory.Add("the decoded-picture cache", 1.0, static_cast<double>(options.picture_cache_bytes));
   CheckStageMemory("tiles", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
-                   TextureBakingMemory(options.baking, dive.mesh().faces.size()));
+                   baking_memory);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const fs::path output = options.output.empty() ? workspace.TilesDir() : options.output;
-  const WorkspaceViews found = FindWorkspaceViews(workspace, dive.model(), options.views, "tiles");
+  WorkspaceViewsOptions views_options = options.views;
+  views_options.picture_cache_bytes = options.picture_cache_bytes;
+  const WorkspaceViews found = FindWorkspaceViews(workspace, dive.model(), views_options, "tiles");
   const ViewImageSource source = found.Source();
   TilesSummary summary;
   summary.images = found.images;

@@ -15,6 +15,7 @@ WorkspaceViews FindWorkspaceViews(const Workspace& workspace, const SparseModel&
                                   const WorkspaceViewsOptions& options, const std::string& stage) {
   WorkspaceViews found;
   found.image_encoding = options.image_encoding;
+  found.pictures = std::make_shared<PictureCache>(options.picture_cache_bytes);
   found.images = options.images;
   if (found.images.empty()) {
     found.images = workspace.RestoredDir();
@@ -53,14 +54,20 @@ WorkspaceViews FindWorkspaceViews(const Workspace& workspace, const SparseModel&
 
 ViewImageSource WorkspaceViews::Source() const {
   ViewImageSource source;
-  source.linear_rgb = [this](std::size_t v) {
-    const cv::Mat image = ReadLinearImage(image_paths[v], image_encoding);
-    ExpectCameraSize(image_paths[v], image.cols, image.rows, static_cast<int>(views[v].camera.width),
-                     static_cast<int>(views[v].camera.height));
-    return image;
+  source.linear_rgb = [this](std::size_t v, const cv::Rect& window) {
+    const cv::Mat picture = pictures->Get(v, [this, v] {
+      cv::Mat read = ReadEncodedPicture(image_paths[v], image_encoding);
+      ExpectCameraSize(image_paths[v], read.cols, read.rows, static_cast<int>(views[v].camera.width),
+                       static_cast<int>(views[v].camera.height));
+      return read;
+    });
+    return DecodeLinearImage(window.empty() ? picture : picture(window), image_encoding);
   };
+  source.is_held = [this](std::size_t v) { return pictures->Holds(v); };
   if (!confidence_paths.empty()) {
-    source.confidence = [this](std::size_t v) { return ReadConfidenceMap(confidence_paths[v], views[v].camera); };
+    source.confidence = [this](std::size_t v, const cv::Rect& window) {
+      return ReadConfidenceMap(confidence_paths[v], views[v].camera, window);
+    };
   }
   return source;
 }

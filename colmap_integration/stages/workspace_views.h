@@ -9,8 +9,13 @@
 //                result then shows the light and water, not albedo: a warning says so).
 //   confidence   IMAGES_confidence/NAME.png (as lutex restore writes them) when that folder exists; the
 //                view selection and the fusion then trust each pixel as much as the restoration did.
+//
+// A stage that reads a view many times (lutex tiles: once per tile that sees it) keeps the decoded
+// pictures of the most recently read views within `picture_cache_bytes` (lib/image/picture_cache.h).
 
+#include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +23,7 @@
 #include "colmap_integration/stages/output_policy.h"
 #include "lib/geometry/sparse_model.h"
 #include "lib/image/image_io.h"
+#include "lib/image/picture_cache.h"
 #include "texturing/texture_views.h"
 
 namespace lutex {
@@ -27,6 +33,7 @@ struct WorkspaceViewsOptions {
   std::filesystem::path confidence;  // empty: IMAGES_confidence when it exists
   bool ignore_confidence = false;    // trust every pixel equally
   ImageEncoding image_encoding = ImageEncoding::kSrgb8;
+  std::size_t picture_cache_bytes = 0;  // decoded pictures kept for reading again; 0: none
 };
 
 struct WorkspaceViews {
@@ -36,6 +43,7 @@ struct WorkspaceViews {
   std::vector<std::filesystem::path> image_paths;
   std::vector<std::filesystem::path> confidence_paths;  // empty when not used
   ImageEncoding image_encoding = ImageEncoding::kSrgb8;
+  std::shared_ptr<PictureCache> pictures = std::make_shared<PictureCache>(0);
 
   // Reads a view's image (checked against its camera's size) and confidence map. Refers to this object.
   ViewImageSource Source() const;

@@ -83,6 +83,10 @@ double LinearToSrgb(double linear) {
 }
 
 cv::Mat ReadLinearImage(const std::filesystem::path& path, ImageEncoding encoding) {
+  return DecodeLinearImage(ReadEncodedPicture(path, encoding), encoding);
+}
+
+cv::Mat ReadEncodedPicture(const std::filesystem::path& path, ImageEncoding encoding) {
   // OpenCV reads EXR only when asked to by this variable, which must be set before the first read.
   setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 0);
   if (!std::filesystem::exists(path)) throw std::runtime_error(path.string() + ": no such image");
@@ -99,7 +103,7 @@ cv::Mat ReadLinearImage(const std::filesystem::path& path, ImageEncoding encodin
                              (depth == CV_8U ? "8-bit" : depth == CV_16U ? "16-bit" : "float") +
                              " samples but the encoding is " + ImageEncodingName(encoding));
   }
-  return DecodeLinearImage(stored, encoding);
+  return stored;
 }
 
 cv::Mat DecodeLinearImage(const cv::Mat& picture, ImageEncoding encoding) {

@@ -86,7 +86,7 @@ class FusionScene {
       : mesh_(std::move(mesh)), scene_(mesh_), raycaster_(scene_), views_(std::move(views)),
         candidates_(mesh_.faces.size(), 8) {
     for (std::size_t v = 0; v < views_.size(); ++v) images_.push_back(Render(scene_, views_[v], shaders[v]));
-    source_.linear_rgb = [this](std::size_t v) { return images_[v].clone(); };
+    source_.linear_rgb = [this](std::size_t v, const cv::Rect& window) { return ViewWindow(images_[v], window); };
     for (std::uint32_t f = 0; f < mesh_.faces.size(); ++f) {
       if (!IsTextured(mesh_, f)) continue;
       for (std::uint32_t v = 0; v < views_.size(); ++v) candidates_.Offer(f, {v, 1.0f});
@@ -279,8 +279,8 @@ TEST(FuseTexels, ConfidenceScalesAViewsWeight) {
   scene.Layout(scene.AllFaces(0));
   for (const float confidence : {0.25f, 0.0f}) {
     // View 0 has no confidence map (fully trusted); view 1 is trusted `confidence`.
-    scene.source_.confidence = [confidence](std::size_t v) {
-      return v == 0 ? cv::Mat() : cv::Mat(160, 160, CV_32FC3, cv::Scalar::all(confidence));
+    scene.source_.confidence = [confidence](std::size_t v, const cv::Rect& window) {
+      return v == 0 ? cv::Mat() : ViewWindow(cv::Mat(160, 160, CV_32FC3, cv::Scalar::all(confidence)), window);
     };
     std::vector<cv::Mat> pages;
     const TexelFusionSummary summary = scene.Fuse(scene.AllFaces(0), {}, pages);

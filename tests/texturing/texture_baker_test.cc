@@ -110,7 +110,7 @@ class TextureBakerTest : public ::testing::Test {
  protected:
   TextureBakerTest() : raycaster_(scene_.mesh) {
     for (const TextureView& view : scene_.views) images_.push_back(RenderAlbedo(raycaster_, view));
-    source_.linear_rgb = [this](std::size_t v) { return images_[v].clone(); };
+    source_.linear_rgb = [this](std::size_t v, const cv::Rect& window) { return ViewWindow(images_[v], window); };
   }
   Scene scene_;
   RaycastScene raycaster_;
