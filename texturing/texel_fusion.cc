@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -283,8 +284,8 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     if (source.is_held) {
       std::stable_partition(used_views.begin(), used_views.end(), [&](std::size_t v) { return source.is_held(v); });
     }
-    summary.views_read += used_views.size();
     std::vector<TexelSamples> samples(num_samples);
+    std::atomic<std::size_t> views_outside{0};  // whose faces all project outside the image: not read
     std::optional<ProgressReporter> progress;
     if (options.show_progress) {
       progress.emplace(passes.size() > 1 ? options.progress_label + ", pass " + std::to_string(p + 1) + "/" +
@@ -297,6 +298,7 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
       // Only the rectangle the pass's faces project to is read, linearised and ray cast.
       const cv::Rect window = SampledWindow(mesh, views[v], faces_of_view[v]);
       if (window.empty()) {  // the faces project outside the image
+        ++views_outside;
         if (progress) progress->Advance();
         return;
       }
@@ -309,6 +311,7 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
       if (progress) progress->Advance();
     });
     if (progress) progress->Finish();
+    summary.views_read += used_views.size() - views_outside.load();
     std::size_t s = 0;
     for (const auto& [begin, end] : texel_ranges) {
       for (std::size_t t = begin; t < end; ++t, ++s) {

@@ -1,6 +1,7 @@
 #include "texturing/texture_views.h"
 
 #include <stdexcept>
+#include <string>
 
 namespace lutex {
 
@@ -10,7 +11,9 @@ void CheckViewPixels(const cv::Mat& pixels, const TextureView& view, const cv::R
   const cv::Size size =
       window.empty() ? cv::Size(static_cast<int>(view.camera.width), static_cast<int>(view.camera.height)) : window.size();
   if (pixels.size() != size || pixels.type() != CV_32FC3) {
-    throw std::runtime_error(view.name + ": the " + what + " does not match the camera's size");
+    throw std::runtime_error(view.name + ": the " + what + " is " + std::to_string(pixels.cols) + "x" +
+                             std::to_string(pixels.rows) + (window.empty() ? " but the camera is " : " but the window is ") +
+                             std::to_string(size.width) + "x" + std::to_string(size.height));
   }
 }
 

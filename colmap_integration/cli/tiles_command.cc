@@ -15,7 +15,7 @@ int RunTilesCommand(int argc, char** argv) {
   TilesOptions options;
   OptionParser parser(
       "lutex tiles --workspace W --mesh M [--images DIR] [--crs C --crs-origin E,N,H | --enu-origin LAT,LON,H]\n"
-      "       [--tile-faces N] [--output DIR]",
+      "       [--tile-faces N] [--image-cache MiB] [--output DIR]",
       "Writes the textured mesh as OGC 3D Tiles 1.1 for web map viewers (CesiumJS and the portals built on\n"
       "it): DIR/tileset.json (default W/lutex/tiles/) and one GLB per tile.\n"
       "The mesh is cut into a quadtree of tiles over its horizontal footprint, each leaf at most --tile-faces\n"

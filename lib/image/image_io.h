@@ -29,8 +29,8 @@ double LinearToSrgb(double linear);
 // kLinear16 is almost always a mistake). Gray images are expanded to RGB.
 cv::Mat ReadLinearImage(const std::filesystem::path& path, ImageEncoding encoding);
 
-// The file's samples as stored, checked as ReadLinearImage checks them: a 3-channel BGR picture (gray and
-// alpha dropped) of the encoding's depth. DecodeLinearImage of it, or of a window of it, is the linear
+// The file's samples as stored, checked as ReadLinearImage checks them: a 3-channel BGR picture (gray
+// expanded, alpha dropped) of the encoding's depth. DecodeLinearImage of it, or of a window of it, is the linear
 // image: a reader that needs only part of a large image linearises only that part.
 cv::Mat ReadEncodedPicture(const std::filesystem::path& path, ImageEncoding encoding);
 
