@@ -125,14 +125,11 @@ std::vector<std::vector<std::size_t>> PlanChartBatches(const Mesh& mesh, const s
   return BatchAlongMortonCurve(centroids, CountChartTexels(charts, gutter, num_threads), bounds, texels_per_batch);
 }
 
-// Steps 3 to 7 for the faces whose label is not kNoView: the pages, and each face's page and corner
-// texels (by face of `mesh`) written into `textured`, whose mesh is left to the caller. `source_vertex`
-// as for ApplySeamCorrections (seam_levelling.h).
+}  // namespace
+
 void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
-                       const ViewRaycaster& raycaster, const ViewImageSource& source,
-                       const FaceViewCandidates& candidates, const std::vector<std::uint32_t>& view_of_face,
-                       const SeamCorrections& corrections, const std::vector<std::uint32_t>& source_vertex,
-                       const TextureBakingOptions& options, bool show_progress, TexturedMesh& textured,
+                       const std::vector<std::uint32_t>& view_of_face, const TextureBakingOptions& options,
+                       bool show_progress, const TexelColouring& colour, TexturedMesh& textured,
                        TextureBakingSummary& summary) {
   auto start = std::chrono::steady_clock::now();
   const std::vector<TextureChart> charts = BuildTextureCharts(mesh, adjacency, views, view_of_face, options.charts);
@@ -146,20 +143,16 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
   }
   summary.seconds_layout += SecondsSince(start);
 
-  // The texels are laid out, fused and corrected a batch of neighbouring charts at a time, so that the
-  // texel table and the fusion's samples are held for one batch only (bounded by the fusion's memory
-  // limit).
+  // The texels are laid out and coloured a batch of neighbouring charts at a time, so that the texel
+  // table and the colouring's samples are held for one batch only (bounded by the fusion's memory limit).
   start = std::chrono::steady_clock::now();
   textured.pages.clear();
   for (const cv::Size& size : atlas.page_sizes) {
     textured.pages.emplace_back(size, CV_32FC3, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
     summary.page_texels += static_cast<std::size_t>(size.area());
   }
-  TexelFusionOptions fusion = options.fusion;
-  fusion.num_threads = options.num_threads;
-  fusion.show_progress = fusion.show_progress && show_progress;
   const std::size_t texels_per_batch =
-      std::max<std::size_t>(1, fusion.memory_limit_bytes / (sizeof(AtlasTexel) + FusionBytesPerTexel()));
+      std::max<std::size_t>(1, options.fusion.memory_limit_bytes / (sizeof(AtlasTexel) + FusionBytesPerTexel()));
   const auto counting_start = std::chrono::steady_clock::now();
   const std::vector<std::vector<std::size_t>> batches =
       PlanChartBatches(mesh, charts, options.gutter, texels_per_batch, options.num_threads);
@@ -168,17 +161,12 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
     LogInfo() << "texture: " << charts.size() << " charts on " << atlas.page_sizes.size() << " pages"
               << (batches.size() > 1 ? ", coloured in " + std::to_string(batches.size()) + " parts" : "");
   }
-  const std::string progress_label = fusion.progress_label;
   for (std::size_t b = 0; b < batches.size(); ++b) {
     const auto layout_start = std::chrono::steady_clock::now();
     const TexelLayout layout =
         RasterizeTexels(charts, atlas, batches[b], mesh.faces.size(), options.gutter, options.num_threads);
     seconds_rasterising += SecondsSince(layout_start);
-    if (batches.size() > 1) {
-      fusion.progress_label = progress_label + ", part " + std::to_string(b + 1) + "/" + std::to_string(batches.size());
-    }
-    summary.fusion.Add(FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, fusion, textured.pages));
-    ApplySeamCorrections(mesh, view_of_face, corrections, source_vertex, layout, options.num_threads, textured.pages);
+    colour(layout, b, batches.size(), textured.pages);
     summary.num_texels += layout.texels.size();
   }
   ParallelFor(textured.pages.size(), options.num_threads, [&](std::size_t p) { FillUnknownTexels(textured.pages[p]); });
@@ -197,6 +185,32 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
   }
   summary.num_charts += charts.size();
   summary.num_pages += atlas.page_sizes.size();
+}
+
+namespace {
+
+// Colours the faces with the texel fusion from the views and the seam levelling's corrections.
+// `source_vertex` as for ApplySeamCorrections (seam_levelling.h).
+void BakeFusedFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
+                    const ViewRaycaster& raycaster, const ViewImageSource& source,
+                    const FaceViewCandidates& candidates, const std::vector<std::uint32_t>& view_of_face,
+                    const SeamCorrections& corrections, const std::vector<std::uint32_t>& source_vertex,
+                    const TextureBakingOptions& options, bool show_progress, TexturedMesh& textured,
+                    TextureBakingSummary& summary) {
+  TexelFusionOptions fusion = options.fusion;
+  fusion.num_threads = options.num_threads;
+  fusion.show_progress = fusion.show_progress && show_progress;
+  const std::string progress_label = fusion.progress_label;
+  const TexelColouring fuse = [&](const TexelLayout& layout, std::size_t batch, std::size_t num_batches,
+                                  std::vector<cv::Mat>& pages) {
+    if (num_batches > 1) {
+      fusion.progress_label =
+          progress_label + ", part " + std::to_string(batch + 1) + "/" + std::to_string(num_batches);
+    }
+    summary.fusion.Add(FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, fusion, pages));
+    ApplySeamCorrections(mesh, view_of_face, corrections, source_vertex, layout, options.num_threads, pages);
+  };
+  BakeLabelledFaces(mesh, adjacency, views, view_of_face, options, show_progress, fuse, textured, summary);
 }
 
 }  // namespace
@@ -222,8 +236,8 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const RaycastScene& scene, con
   summary.levelling = chosen.levelling;
   TexturedMesh& textured = result.textured;
   textured.mesh = mesh;
-  BakeLabelledFaces(mesh, adjacency, views, raycaster, source, chosen.candidates, chosen.selection.view_of_face,
-                    chosen.corrections, /*source_vertex=*/{}, options, /*show_progress=*/true, textured, summary);
+  BakeFusedFaces(mesh, adjacency, views, raycaster, source, chosen.candidates, chosen.selection.view_of_face,
+                 chosen.corrections, /*source_vertex=*/{}, options, /*show_progress=*/true, textured, summary);
   summary.num_textured_faces = textured.NumTexturedFaces();
   summary.seams = MeasureSeamVisibility(textured, adjacency);
   result.view_of_face = std::move(chosen.selection.view_of_face);
@@ -259,8 +273,8 @@ TexturedMesh BakeFaces(const Mesh& mesh, const std::vector<TextureView>& views, 
     }
     view_of_face[i] = labels[faces[i]];
   }
-  BakeLabelledFaces(textured.mesh, adjacency, views, raycaster, source, candidates, view_of_face, chosen.corrections,
-                    source_vertex, options, /*show_progress=*/false, textured, summary);
+  BakeFusedFaces(textured.mesh, adjacency, views, raycaster, source, candidates, view_of_face, chosen.corrections,
+                 source_vertex, options, /*show_progress=*/false, textured, summary);
   summary.num_views = views.size();
   summary.num_faces += faces.size();
   summary.num_textured_faces += textured.NumTexturedFaces();

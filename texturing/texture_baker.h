@@ -18,6 +18,7 @@
 // Images are loaded on demand through the ViewImageSource, at most one per thread, so memory depends on
 // the mesh, the atlas pages and the fusion's limit, not on the number of views.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "texturing/seam_levelling.h"
 #include "texturing/seam_visibility.h"
 #include "texturing/texel_fusion.h"
+#include "texturing/texel_layout.h"
 #include "texturing/texture_charts.h"
 #include "texturing/texture_views.h"
 #include "texturing/textured_mesh.h"
@@ -102,6 +104,22 @@ ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const 
 TexturedMesh BakeFaces(const Mesh& mesh, const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
                        const ViewImageSource& source, const ChosenViews& chosen, const std::vector<std::uint32_t>& faces,
                        const TextureBakingOptions& options, std::vector<std::uint32_t>& source_vertex,
+                       TextureBakingSummary& summary);
+
+// Colours one batch of texels of a layout into the atlas pages (texels it leaves NaN are filled by
+// pull-push afterwards). `batch` of `num_batches`, for progress messages.
+using TexelColouring = std::function<void(const TexelLayout& layout, std::size_t batch, std::size_t num_batches,
+                                          std::vector<cv::Mat>& pages)>;
+
+// Steps 3 to 7 for the faces of `mesh` whose label is not kNoView, with the texels' colours from `colour`:
+// charts projected into their view at options.charts' texel size, packed into pages, laid out a batch of
+// neighbouring charts at a time (options.fusion.memory_limit_bytes bounds a batch), coloured, filled.
+// Writes the pages and each face's page and corner texels into `textured`; its mesh is left to the caller.
+// BakeTexture and BakeFaces colour with the texel fusion; a tiled bake's coarser levels with their
+// children's textures (texture_transfer.h).
+void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
+                       const std::vector<std::uint32_t>& view_of_face, const TextureBakingOptions& options,
+                       bool show_progress, const TexelColouring& colour, TexturedMesh& textured,
                        TextureBakingSummary& summary);
 
 // Throws std::invalid_argument when the mesh's area at options.charts.texel_size cannot fit in

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
-#include <set>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -20,6 +19,7 @@
 #include "lib/util/option_error.h"
 #include "texturing/gltf_export.h"
 #include "texturing/gltf_frame.h"
+#include "texturing/texture_transfer.h"
 #include "texturing/tile_mesh.h"
 #include "texturing/tileset_json.h"
 
@@ -61,7 +61,8 @@ struct BakedTile {
   Eigen::AlignedBox3d box;         // of its content and its children's, in the tiles frame
   double geometric_error = 0.0;
   double texel_size = 0.0;         // scene units per texel of its texture
-  std::set<std::uint32_t> views;   // the views its faces were textured from
+  TexturedMesh halved_texture;     // its texture at half the resolution, which its parent is made from
+  std::vector<std::uint32_t> view_of_face;  // the view each face was textured from (kNoView: none)
 };
 
 // Bakes the tree bottom-up, writing each tile's GLB into `folder` and its entry into `tileset`.
@@ -84,9 +85,7 @@ class TileBaker {
       textured = BakeFaces(dive_.mesh(), views_, raycaster_, source_, chosen_, node.faces, options_.baking,
                            baked.geometry.source_vertex, baking);
       baked.geometry.mesh = textured.mesh;
-      for (std::uint32_t f : node.faces) {
-        if (chosen_.selection.view_of_face[f] != kNoView) baked.views.insert(chosen_.selection.view_of_face[f]);
-      }
+      for (std::uint32_t f : node.faces) baked.view_of_face.push_back(chosen_.selection.view_of_face[f]);
       baked.texel_size = baking.num_texels > 0 ? std::sqrt(TexturedArea(textured) / double(baking.num_texels))
                                                : options_.baking.charts.texel_size;
       leaf_texel_sizes_.push_back(baked.texel_size);
@@ -96,19 +95,27 @@ class TileBaker {
       std::vector<BakedTile> children;
       for (std::size_t child : node.children) children.push_back(Bake(child));
       std::vector<const TileMesh*> parts;
+      std::vector<TransferSource> textures;
       double children_error = 0.0, children_texel = 0.0;
       for (BakedTile& child : children) {
         parts.push_back(&child.geometry);
+        textures.push_back({&child.halved_texture, &child.view_of_face});
         baked.box.extend(child.box);
-        baked.views.insert(child.views.begin(), child.views.end());
         children_error = std::max(children_error, child.geometric_error);
         children_texel = std::max(children_texel, child.texel_size);
       }
       SimplifiedTileMesh simplified = SimplifyTileMesh(MergeTileMeshes(parts), options_.tree.max_faces);
-      children.clear();
       baked.geometry = std::move(simplified.tile);
       baked.texel_size = 2.0 * children_texel;
-      textured = BakeCoarse(baked.geometry.mesh, baked.views, baked.texel_size);
+      TextureBakingOptions baking = options_.baking;
+      baking.charts.texel_size = baked.texel_size;
+      // The children's surface lies within the simplification's error of the parent's; a few texels more
+      // cover the rounding of both.
+      TransferredTexture transferred = TransferTexture(textures, baked.geometry.mesh, views_,
+                                                       simplified.error + 4.0 * baked.texel_size, baking);
+      children.clear();
+      textured = std::move(transferred.textured);
+      baked.view_of_face = std::move(transferred.view_of_face);
       baked.geometric_error = std::max(simplified.error + children_error, baked.texel_size);
     }
     for (const Eigen::Vector3d& vertex : baked.geometry.mesh.vertices) baked.box.extend(tiles_from_model_ * vertex);
@@ -116,6 +123,7 @@ class TileBaker {
     textured.georeference = frame_.georeference;
     const std::string uri = node.name + ".glb";
     WriteGltf(textured, folder_ / uri, options_.gltf);
+    if (node_index != 0) baked.halved_texture = HalveTexture(textured);
     summary_.max_tile_faces = std::max(summary_.max_tile_faces, textured.mesh.faces.size());
     TilesetTile& tile = tileset_.tiles[node_index];
     tile.box = baked.box;
@@ -130,36 +138,6 @@ class TileBaker {
   const std::vector<double>& leaf_texel_sizes() const { return leaf_texel_sizes_; }
 
  private:
-  // A parent's simplified mesh, baked from the views its children were textured from.
-  TexturedMesh BakeCoarse(const Mesh& mesh, const std::set<std::uint32_t>& view_set, double texel_size) const {
-    if (view_set.empty()) {
-      TexturedMesh untextured;
-      untextured.mesh = mesh;
-      untextured.face_page.assign(mesh.faces.size(), -1);
-      untextured.face_corner_texels.assign(mesh.faces.size(), {});
-      return untextured;
-    }
-    const std::vector<std::uint32_t> chosen_views(view_set.begin(), view_set.end());
-    std::vector<TextureView> views;
-    for (std::uint32_t v : chosen_views) views.push_back(views_[v]);
-    ViewImageSource source;
-    source.linear_rgb = [this, chosen_views](std::size_t i, const cv::Rect& window) {
-      return source_.linear_rgb(chosen_views[i], window);
-    };
-    if (source_.confidence) {
-      source.confidence = [this, chosen_views](std::size_t i, const cv::Rect& window) {
-        return source_.confidence(chosen_views[i], window);
-      };
-    }
-    if (source_.is_held) {
-      source.is_held = [this, chosen_views](std::size_t i) { return source_.is_held(chosen_views[i]); };
-    }
-    TextureBakingOptions baking = options_.baking;
-    baking.charts.texel_size = texel_size;
-    baking.fusion.show_progress = false;
-    return BakeTexture(mesh, views, source, baking).textured;
-  }
-
   const LoadedDive& dive_;
   const TileTree& tree_;
   const std::vector<TextureView>& views_;

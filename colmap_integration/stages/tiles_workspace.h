@@ -10,8 +10,9 @@
 //      labels and the colours fused from them agree across tile borders
 //   4. each leaf's faces baked with those labels and written as DIR/tiles/NAME.glb, then freed
 //   5. each parent, once its children are done: their meshes merged and simplified to the face budget
-//      with the tile's border locked (texturing/tile_mesh.h), baked from the views its children use at
-//      twice their coarsest texel size, written, and the children's meshes freed
+//      with the tile's border locked (texturing/tile_mesh.h), textured at twice their coarsest texel size
+//      from their textures (texturing/texture_transfer.h; no image is read again, and a level shows the
+//      colours of the level below), written, and the children freed
 //   6. DIR/tileset.json (texturing/tileset_json.h): boxes, geometric errors (0 for leaves; a parent's is
 //      its simplification error plus its children's, and at least its texel size), refine REPLACE, and
 //      the root transform to ECEF from the georeference (lib/geo/earth_frame.h); without one, a local
@@ -19,7 +20,8 @@
 //
 // The folder is written under a temporary name beside DIR and renamed into place when complete.
 // Memory: the views chosen for every face (as for `lutex texture`), and one tile's bake at a time with
-// the meshes of at most three children per level of the tree, plus the decoded-picture cache.
+// at most three finished children per level of the tree (their meshes and their textures at half the
+// resolution: a quarter of their texels), plus the decoded-picture cache.
 
 #include <cstddef>
 #include <filesystem>

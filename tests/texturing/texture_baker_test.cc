@@ -12,6 +12,7 @@
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/raycast/raycast_scene.h"
+#include "texturing/texture_transfer.h"
 
 namespace lutex {
 namespace {
@@ -237,6 +238,50 @@ TEST_F(TextureBakerTest, TexelSizeSetsTheAtlasResolution) {
   EXPECT_LT(ratio, 4.5);
   EXPECT_GT(coarse.summary.num_texels, 0.5 * 100 * 100);
   EXPECT_LT(coarse.summary.num_texels, 2.0 * 100 * 100);
+}
+
+// A tiled bake's coarser level (texture_transfer.h): a coarser mesh of the same floor, textured from the
+// fine texture halved, shows the true albedo as well as a texture baked for it from the images.
+TEST_F(TextureBakerTest, ACoarserMeshTexturedFromTheTextureShowsTheTrueAlbedo) {
+  TextureBakingOptions options;
+  options.charts.texel_size = 0.005;
+  const TextureBakingResult fine = BakeTexture(scene_.mesh, scene_.views, source_, options);
+  const TexturedMesh halved = HalveTexture(fine.textured);
+  ASSERT_EQ(halved.pages.size(), fine.textured.pages.size());
+  EXPECT_EQ(halved.pages[0].cols, (fine.textured.pages[0].cols + 1) / 2);
+  // Another tessellation of the floor: its vertices are not the fine mesh's and lie up to ~1 mm off it.
+  const Mesh coarse_mesh = MakeHeightFieldMesh(
+      [](double x, double y) { return 0.08 * std::sin(2.0 * x) * std::cos(1.5 * y); }, -1.0, 1.0, -1.0, 1.0, 23, 23);
+  options.charts.texel_size = 0.01;
+  options.num_threads = 1;
+  const TransferredTexture one =
+      TransferTexture({{&halved, &fine.view_of_face}}, coarse_mesh, scene_.views, 0.02, options);
+  options.num_threads = 2;
+  const TransferredTexture two =
+      TransferTexture({{&halved, &fine.view_of_face}}, coarse_mesh, scene_.views, 0.02, options);
+  const RaycastScene coarse_raycaster(coarse_mesh);
+  const TextureBakingResult direct = BakeTexture(coarse_mesh, scene_.views, source_, options);
+  EXPECT_GT(one.textured.NumTexturedFaces(), 0.95 * double(direct.textured.NumTexturedFaces()));
+  for (std::size_t v = 0; v < scene_.views.size(); v += 4) {
+    const RenderBackError transferred =
+        CompareThroughView(coarse_raycaster, scene_.views[v], one.textured, Eigen::Vector2d::Zero(), 0.0);
+    const RenderBackError baked =
+        CompareThroughView(coarse_raycaster, scene_.views[v], direct.textured, Eigen::Vector2d::Zero(), 0.0);
+    EXPECT_LT(transferred.median, 0.002) << scene_.views[v].name;
+    // Two resamplings blur the patch borders a little more than one.
+    EXPECT_LT(transferred.mean, 1.5 * baked.mean + 0.002) << scene_.views[v].name;
+  }
+  // The threads do not change the result.
+  EXPECT_EQ(one.view_of_face, two.view_of_face);
+  ASSERT_EQ(one.textured.pages.size(), two.textured.pages.size());
+  for (std::size_t p = 0; p < one.textured.pages.size(); ++p) {
+    EXPECT_EQ(cv::norm(one.textured.pages[p], two.textured.pages[p], cv::NORM_INF), 0.0);
+  }
+  // Nothing under the coarse mesh within the search distance: nothing textured.
+  Mesh lifted = coarse_mesh;
+  for (Eigen::Vector3d& vertex : lifted.vertices) vertex.z() += 0.5;
+  const TransferredTexture none = TransferTexture({{&halved, &fine.view_of_face}}, lifted, scene_.views, 0.02, options);
+  EXPECT_EQ(none.textured.NumTexturedFaces(), 0u);
 }
 
 }  // namespace
