@@ -4,7 +4,8 @@
 // two images per input (the I/O restore cannot avoid) and (b) `lutex restore`
 // (read, ray-cast, look up, restore, write image and confidence map). Reports both and the ratio, then
 // where restore's time goes: every stage timed on its own on one thread (read, ray cast, restore
-// arithmetic, write image, write confidence map). Not a test.
+// arithmetic, write image, write confidence map), and what taking forward scattering out of an image
+// costs on top (`--remove-forward-scatter` with coastal water). Not a test.
 //
 //   restore_benchmark [--images 24] [--width 1280] [--num-threads 0]
 
@@ -22,6 +23,8 @@
 #include "lib/image/image_io.h"
 #include "lib/geometry/mesh_io.h"
 #include "lib/lut/lut_file.h"
+#include "lib/model/water.h"
+#include "lib/raycast/forward_scatter_removal.h"
 #include "lib/raycast/raycast_scene.h"
 #include "lib/util/parallel_for.h"
 
@@ -79,7 +82,8 @@ int main(int argc, char** argv) {
   const CameraRays rays(model.cameras.begin()->second, 1);
   GeometryMapsOptions maps_options;
   maps_options.num_threads = 1;
-  double read = 0.0, cast = 0.0, arithmetic = 0.0, write = 0.0, write_confidence = 0.0;
+  double read = 0.0, cast = 0.0, arithmetic = 0.0, write = 0.0, write_confidence = 0.0, forward_scatter = 0.0;
+  const ForwardScatter coastal = ForwardScatter::Of(*WaterPreset("coastal"));
   GeometryMaps maps;
   RestoredImage result;
   for (const Image* image : list) {
@@ -89,6 +93,9 @@ int main(int argc, char** argv) {
     start = std::chrono::steady_clock::now();
     scene.Render(rays, image->cam_from_world, maps_options, &maps);
     cast += bench::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
+    const cv::Mat without_forward_scatter = WithoutForwardScatter(linear, maps, rays, coastal);
+    forward_scatter += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
     RestoreImage(linear, maps, rays, lut, restore.restoration, nullptr, &result);
     arithmetic += bench::SecondsSince(start);
@@ -118,6 +125,8 @@ int main(int argc, char** argv) {
   share("restore (LUT lookup, albedo, confidence)", arithmetic);
   share("write restored image", write);
   share("write confidence map", write_confidence);
+  std::cout << "  with --remove-forward-scatter (coastal water), also: " << forward_scatter / images
+            << " s per image (" << 100.0 * forward_scatter / stages << " % more)\n";
   std::cout << "ratio all stages / (read + write restored image): " << stages / (read + write) << "\n"
             << "ratio all stages / (read + write both images): " << stages / (read + write + write_confidence) << "\n";
   fs::remove_all(root);

@@ -1,4 +1,4 @@
-// LUT files, versions 1 and 2 (lib/lut/lut_file.h).
+// LUT files, versions 1 to 3 (lib/lut/lut_file.h).
 
 #include <cstddef>
 #include <cstdint>

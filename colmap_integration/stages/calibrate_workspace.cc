@@ -16,6 +16,7 @@
 #include "colmap_integration/stages/output_policy.h"
 #include "colmap_integration/stages/stage_memory.h"
 #include "colmap_integration/stages/workspace_lock.h"
+#include "lib/raycast/forward_scatter_removal.h"
 #include "lib/raycast/images_by_camera.h"
 #include "lib/model/light_rig_json.h"
 #include "colmap_integration/io/sparse_model_io.h"
@@ -84,7 +85,8 @@ ObservationSet KnownColorObservations(const CalibrateOptions& options,
   std::mutex per_image_mutex;
   ForEachImageWithMaps(model, scene, options.num_threads, "target images",
                        [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
-    const cv::Mat observed = ReadLinearImage(workspace.images_dir / image.name, options.input_encoding);
+    const cv::Mat observed = WithoutForwardScatter(ReadLinearImage(workspace.images_dir / image.name, options.input_encoding),
+                                                   maps, rays, options.calibration.grid.forward_scatter);
     const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
     std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
     // In a survey most images show no target; in calibration images that is worth a warning.
@@ -175,7 +177,8 @@ ObservationSet ChessboardObservations(const CalibrateOptions& options, const Cam
     if (!board) {
       LogWarning() << paths[i].string() << ": no " << board_name << " found; the image is skipped";
     } else {
-      per_image[i] = SampleKnownColors(image, board->known_albedo, board->maps, rays, sampling);
+      per_image[i] = SampleKnownColors(WithoutForwardScatter(image, board->maps, rays, options.calibration.grid.forward_scatter),
+                                       board->known_albedo, board->maps, rays, sampling);
     }
     progress.Advance();
   });
@@ -356,6 +359,7 @@ ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedD
     extraction.superpixels.shading = options.calibration.grid.shading;
     extraction.views.shading = options.calibration.grid.shading;
     extraction.input_encoding = options.input_encoding;
+    extraction.forward_scatter = options.calibration.grid.forward_scatter;
     extraction.num_threads = options.num_threads;
     SurveyCorrespondences survey = ExtractSurveyCorrespondences(workspace.images_dir, model, dive.scene(), extraction);
     summary->num_superpixel_samples = survey.num_samples;
@@ -541,6 +545,8 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   // The rig file, read once: its lights are the shading from here on.
   CalibrateOptions options = given;
   if (!options.shading_rig.empty()) options.calibration.grid.shading.rig = ReadLightRig(options.shading_rig);
+  // From here on every image is sampled without it, and the LUT records it for restoration.
+  if (options.remove_forward_scatter) options.calibration.grid.forward_scatter = ForwardScatter::Of(ReferenceWater(options));
   const Camera& camera = SingleImageSize(dive.model(), dive.workspace().sparse_dir);
 
   CalibrationOptions calibration = options.calibration;

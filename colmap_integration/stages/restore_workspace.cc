@@ -15,6 +15,7 @@
 #include "colmap_integration/stages/workspace_lock.h"
 #include "lib/calibration/exposure_record.h"
 #include "lib/image/image_header.h"
+#include "lib/raycast/forward_scatter_removal.h"
 #include "lib/raycast/images_by_camera.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
@@ -185,6 +186,8 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
     try {
       observed = ReadLinearImage(input, options.input_encoding);
       ExpectCameraSize(input, observed.cols, observed.rows, rays.width(), rays.height());
+      // As the calibration did before it fitted the LUT.
+      observed = WithoutForwardScatter(observed, maps, rays, lut.grid().forward_scatter);
     } catch (const std::runtime_error& error) {
       skip_or_throw(error);  // unreadable pixels behind a sound header (a truncated file)
       return;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "lib/raycast/forward_scatter_removal.h"
 #include "lib/raycast/images_by_camera.h"
 
 namespace lutex {
@@ -66,6 +67,7 @@ std::map<std::uint32_t, std::vector<std::uint32_t>> CandidatePartners(
 void SurveyCorrespondenceOptions::Check() const {
   superpixels.Check();
   views.Check();
+  forward_scatter.Check();
   if (partners < 1 || candidates < partners) throw std::invalid_argument("need 1 <= partners <= candidates");
 }
 
@@ -84,7 +86,8 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
   std::mutex mutex;
   ForEachImageWithMaps(model, scene, options.num_threads, "superpixels",
                        [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
-    const cv::Mat observed = ReadLinearImage(images_dir / image.name, options.input_encoding);
+    const cv::Mat observed = WithoutForwardScatter(ReadLinearImage(images_dir / image.name, options.input_encoding),
+                                                   maps, rays, options.forward_scatter);
     ImageSamples result;
     result.samples = SampleSuperpixels(observed, maps, rays, options.superpixels);
     const Rigid3d world_from_cam = image.cam_from_world.Inverse();
@@ -115,7 +118,8 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
   ForEachImageWithMaps(asked, scene, options.num_threads, "correspondences",
                        [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
     const auto asking = askers.find(image.image_id);
-    const cv::Mat observed = ReadLinearImage(images_dir / image.name, options.input_encoding);
+    const cv::Mat observed = WithoutForwardScatter(ReadLinearImage(images_dir / image.name, options.input_encoding),
+                                                   maps, rays, options.forward_scatter);
     const ViewedImage other{observed, maps, rays, image.cam_from_world};
     std::vector<std::pair<std::uint32_t, Match>> found;
     for (const auto& [a, rank] : asking->second) {

@@ -37,6 +37,7 @@ void FrustumLutGrid::Check() const {
   }
   if (nz > 1 && z_far == z_near) throw std::invalid_argument("LUT with several slabs needs z_far > z_near");
   if (image_width <= 0 || image_height <= 0) throw std::invalid_argument("LUT grid needs the image size");
+  forward_scatter.Check();
 }
 
 double FrustumLutGrid::SlabDepth(int k) const {
@@ -61,7 +62,7 @@ bool FrustumLutGrid::operator==(const FrustumLutGrid& other) const {
   return nx == other.nx && ny == other.ny && nz == other.nz && z_near == other.z_near && z_far == other.z_far &&
          spacing == other.spacing && alpha_interpolation == other.alpha_interpolation &&
          image_width == other.image_width && image_height == other.image_height &&
-         shading == other.shading;
+         shading == other.shading && forward_scatter == other.forward_scatter;
 }
 
 FrustumLut::FrustumLut(const FrustumLutGrid& grid) : grid_(grid) {

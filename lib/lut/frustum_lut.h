@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 
+#include "lib/model/forward_scatter.h"
 #include "lib/model/shading.h"
 
 namespace lutex {
@@ -48,6 +49,9 @@ struct FrustumLutGrid {
   // How the model shades (lib/model/shading.h: one light position, by default the camera centre, or the
   // light rig). Part of the LUT's meaning: restoration must shade as the calibration did.
   Shading shading;
+  // The forward scattering taken out of every image before the LUT was fitted (lib/model/forward_scatter.h);
+  // none in air or when switched off. Part of the LUT's meaning: restoration must take out the same.
+  ForwardScatter forward_scatter;
 
   // Throws std::invalid_argument naming the problem.
   void Check() const;

@@ -18,6 +18,9 @@ namespace {
 
 constexpr const char* kMagic = "LUTEX-LUT 1";
 constexpr const char* kMagicWithRig = "LUTEX-LUT 2";
+// Version 3 records the forward scattering restoration must take out; a lutex that reads only 1 and 2
+// refuses it instead of restoring without.
+constexpr const char* kMagicWithForwardScatter = "LUTEX-LUT 3";
 constexpr const char* kLayout = "slab k, then row j, then column i; per node alpha_r alpha_g alpha_b beta_r beta_g beta_b";
 
 nlohmann::json LightToJson(const Light& light) {
@@ -55,8 +58,8 @@ FrustumLut ReadLut(std::istream& stream) {
   if (!std::getline(stream, line) || line.rfind("LUTEX-LUT", 0) != 0) {
     throw std::runtime_error("not a lutex LUT file (no 'LUTEX-LUT' magic)");
   }
-  if (line != kMagic && line != kMagicWithRig) {
-    throw std::runtime_error("unsupported LUT file version '" + line + "' (this lutex reads versions 1 and 2)");
+  if (line != kMagic && line != kMagicWithRig && line != kMagicWithForwardScatter) {
+    throw std::runtime_error("unsupported LUT file version '" + line + "' (this lutex reads versions 1 to 3)");
   }
   if (!std::getline(stream, line)) throw std::runtime_error("truncated LUT file: no header");
   nlohmann::json header;
@@ -99,6 +102,11 @@ FrustumLut ReadLut(std::istream& stream) {
     }
     if (header.contains("shading_rig")) {
       for (const nlohmann::json& light : header["shading_rig"]) grid.shading.rig.lights.push_back(LightFromJson(light));
+    }
+    if (header.contains("forward_scatter")) {
+      const nlohmann::json& scatter = header["forward_scatter"];
+      for (int c = 0; c < 3; ++c) grid.forward_scatter.scattering[c] = scatter.at("scattering_per_m").at(c).get<double>();
+      grid.forward_scatter.anisotropy_g = scatter.at("anisotropy_g").get<double>();
     }
     grid.image_height = whole("image_height");
     if (header.at("value_type").get<std::string>() != "float64 little-endian") {
@@ -152,7 +160,9 @@ void WriteLut(const FrustumLut& lut, std::ostream& stream) {
   nlohmann::json header;
   header["format"] = "lutex-lut";
   const bool with_rig = !grid.shading.rig.lights.empty();
-  header["version"] = with_rig ? 2 : 1;
+  const bool with_forward_scatter = !grid.forward_scatter.IsNone();
+  const char* magic = with_forward_scatter ? kMagicWithForwardScatter : with_rig ? kMagicWithRig : kMagic;
+  header["version"] = with_forward_scatter ? 3 : with_rig ? 2 : 1;
   header["nx"] = grid.nx;
   header["ny"] = grid.ny;
   header["nz"] = grid.nz;
@@ -168,11 +178,16 @@ void WriteLut(const FrustumLut& lut, std::ostream& stream) {
     header["shading_rig"] = nlohmann::json::array();
     for (const Light& light : grid.shading.rig.lights) header["shading_rig"].push_back(LightToJson(light));
   }
+  if (with_forward_scatter) {
+    const Eigen::Vector3d& b = grid.forward_scatter.scattering;
+    header["forward_scatter"] = {{"scattering_per_m", {b.x(), b.y(), b.z()}},
+                                 {"anisotropy_g", grid.forward_scatter.anisotropy_g}};
+  }
   header["image_height"] = grid.image_height;
   header["node_layout"] = kLayout;
   header["value_type"] = "float64 little-endian";
   header["num_values"] = static_cast<long long>(grid.NumNodes()) * 6;
-  stream << (with_rig ? kMagicWithRig : kMagic) << "\n" << header.dump() << "\n";
+  stream << magic << "\n" << header.dump() << "\n";
   for (int n = 0; n < grid.NumNodes(); ++n) {
     const LutNode& node = lut.node(n);
     for (int c = 0; c < 3; ++c) WriteBinary<double>(stream, node.alpha[c]);

@@ -17,7 +17,10 @@
 // (lib/model/shading.h) and adds "shading_rig": [{"position", "direction", "intensity": [3 numbers],
 // "profile": "isotropic" | "cosine_power" | "gaussian" | "cycles_spot", "exponent", "sigma_rad",
 // "spot_size_rad", "spot_blend"}, ...], so a lutex that cannot shade with a rig rejects the file instead
-// of restoring with the wrong shading. Readers reject other versions, wrong value counts, truncation and
+// of restoring with the wrong shading. Version 3 (magic "LUTEX-LUT 3", "version":3) is written only when
+// the calibration took forward scattering out of its images (lib/model/forward_scatter.h) and adds
+// "forward_scatter": {"scattering_per_m": [3 numbers], "anisotropy_g"}, which restoration must take out
+// the same way (it may also hold "shading_rig"). Readers reject other versions, wrong value counts, truncation and
 // non-finite values.
 
 #include <filesystem>

@@ -206,6 +206,39 @@ TEST(LutFile, RoundTripKeepsTheShadingRig) {
   EXPECT_FALSE(read.grid() == Grid(3, 2, 2, DepthSpacing::kUniformZ));
 }
 
+// A LUT fitted to images without their forward scattering is written as version 3 and read back with it;
+// a negative scattering coefficient in a header is a clear error.
+TEST(LutFile, RoundTripKeepsTheForwardScattering) {
+  FrustumLutGrid grid = Grid(3, 2, 2, DepthSpacing::kUniformZ);
+  grid.forward_scatter.scattering = Eigen::Vector3d(0.35, 0.4, 0.42);
+  grid.forward_scatter.anisotropy_g = 0.85;
+  std::ostringstream written;
+  WriteLut(FilledNonNegative(grid), written);
+  EXPECT_EQ(written.str().rfind("LUTEX-LUT 3\n", 0), 0u);
+  std::istringstream stream(written.str());
+  EXPECT_TRUE(ReadLut(stream).grid() == grid);
+  grid.forward_scatter.anisotropy_g = 0.9;
+  std::istringstream again(written.str());
+  EXPECT_FALSE(ReadLut(again).grid() == grid);
+
+  std::string negative = written.str();
+  const std::size_t at = negative.find("0.35");
+  ASSERT_NE(at, std::string::npos);
+  negative.replace(at, 4, "-0.3");
+  std::istringstream bad(negative);
+  EXPECT_THROW(
+      {
+        try {
+          ReadLut(bad);
+        } catch (const std::runtime_error& error) {
+          EXPECT_NE(std::string(error.what()).find("scattering coefficients must be finite and >= 0"), std::string::npos)
+              << error.what();
+          throw;
+        }
+      },
+      std::runtime_error);
+}
+
 std::string ReadError(const std::string& bytes) {
   std::istringstream stream(bytes);
   try {
@@ -222,7 +255,7 @@ TEST(LutFile, BadFilesAreClearErrors) {
   const std::string bytes = good.str();
   EXPECT_NE(ReadError(bytes.substr(0, bytes.size() - 5)).find("truncated"), std::string::npos);
   EXPECT_NE(ReadError("hello").find("not a lutex LUT"), std::string::npos);
-  EXPECT_NE(ReadError("LUTEX-LUT 3\n{}\n").find("version"), std::string::npos);
+  EXPECT_NE(ReadError("LUTEX-LUT 4\n{}\n").find("version"), std::string::npos);
   EXPECT_NE(ReadError("LUTEX-LUT 1\n{\"nx\": 2}\n").find("lacks a field"), std::string::npos);
   EXPECT_NE(ReadError(bytes + "x").find("after its values"), std::string::npos);
   std::string with_nan = bytes;
