@@ -14,10 +14,11 @@ int RunRestoreCommand(int argc, char** argv) {
       "lutex restore --workspace W --mesh M --lut L [--output DIR] [--input-encoding E] [--output-encoding E]",
       "Restores every registered image of the COLMAP workspace W to albedo with the LUT L (lutex calibrate):\n"
       "per pixel, the mesh gives the surface point and its shading cos_theta, the LUT gives alpha and beta,\n"
-      "and albedo = (I - beta) / (alpha cos_theta). Writes DIR/NAME (default DIR: W/lutex/restored) and an\n"
-      "8-bit confidence map DIR_confidence/NAME.png per image (255 = fully trusted; low where the signal is\n"
-      "weak, the pixel saturated, the surface seen at a grazing angle, or the LUT there not constrained by\n"
-      "calibration data). Pixels without a surface are 0.\n"
+      "and albedo = (I - beta) / (alpha cos_theta); when the LUT was calibrated with --remove-forward-scatter,\n"
+      "the same forward scattering is first taken out of the image. Writes DIR/NAME (default DIR:\n"
+      "W/lutex/restored) and an 8-bit confidence map DIR_confidence/NAME.png per image (255 = fully\n"
+      "trusted; low where the signal is weak, the pixel saturated, the surface seen at a grazing angle, or\n"
+      "the LUT there not constrained by calibration data). Pixels without a surface are 0.\n"
       "Input encoding: srgb8 (8-bit sRGB, cameras' JPEGs; the default), linear16 (16-bit linear PNG/TIFF) or\n"
       "float (EXR). Output encoding: same (as the input; the default), srgb8, linear16 or float.");
   AddDiveOptions(parser, &options.workspace, &options.mesh);

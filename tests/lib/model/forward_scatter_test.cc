@@ -43,7 +43,9 @@ TEST(ForwardScatter, TheKernelMatchesAMonteCarloOfSingleScatteringOnTheWayToTheC
       EXPECT_NEAR(ForwardScatterEnergyWithin(phi, g), within, 0.035) << "g " << g << ", " << degrees << " degrees";
     }
     // Most of it is near the pixel, but not all: for g = 0.9 a quarter comes from beyond 10 degrees.
-    if (g == 0.9) EXPECT_NEAR(1.0 - ForwardScatterEnergyWithin(10.0 * kPi / 180.0, g), 0.25, 0.03);
+    if (g == 0.9) {
+      EXPECT_NEAR(1.0 - ForwardScatterEnergyWithin(10.0 * kPi / 180.0, g), 0.25, 0.03);
+    }
   }
 }
 
