@@ -186,12 +186,12 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
     try {
       observed = ReadLinearImage(input, options.input_encoding);
       ExpectCameraSize(input, observed.cols, observed.rows, rays.width(), rays.height());
-      // As the calibration did before it fitted the LUT.
-      observed = WithoutForwardScatter(observed, maps, rays, lut.grid().forward_scatter);
     } catch (const std::runtime_error& error) {
       skip_or_throw(error);  // unreadable pixels behind a sound header (a truncated file)
       return;
     }
+    // As the calibration did before it fitted the LUT.
+    observed = WithoutForwardScatter(observed, maps, rays, lut.grid().forward_scatter);
     bool missing_exif = false;
     const double gain = exposure ? exposure->GainOf(workspace.images_dir, image.name, &missing_exif) : 1.0;
     // Divided by its gain, the image's clipping level and noise are divided too.

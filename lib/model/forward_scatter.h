@@ -37,9 +37,9 @@
 // camera sees more of the blur as blur.
 //
 // Inverting: t R + (1 - t) (k * R) = S is solved by Chebyshev iteration (forward_scatter.cc says why it
-// converges and how fast: 4 steps, one convolution each, leave about 1 % of the correction undone where
-// 70 % of the light is scattered; the plain series R = S - (1 - t) (k * R - R) needs 8 for a third of
-// that). Radiance is not negative: where the scattering given exceeds the water's, dark pixels beside
+// converges and how fast: where 70 % of the light is scattered, its bound leaves under 1 % of the
+// correction undone after 4 steps, one convolution each; the plain series R = S - (1 - t) (k * R - R)
+// leaves 2.5 % after 8). Radiance is not negative: where the scattering given exceeds the water's, dark pixels beside
 // bright ones would come out below 0, and are set to 0.
 
 #include <vector>
@@ -84,7 +84,8 @@ cv::Mat ConvolveForwardScatterKernel(const cv::Mat& image, const ForwardScatterK
 
 // The signal after forward scattering, t R + (1 - t) (k * R), of a CV_32FC3 radiance image; `range` is
 // CV_32F, the distance [m] from the camera to each pixel's surface along its ray, NaN where there is none
-// (there t = 1). What the simulator and tests use to put forward scattering into an image.
+// (there t = 1). What the tests use to put forward scattering into an image; lutex's simulator does not
+// render it yet.
 cv::Mat AddForwardScatter(const cv::Mat& radiance, const cv::Mat& range, const ForwardScatterKernel& kernel,
                           const Eigen::Vector3d& scattering_per_m);
 
