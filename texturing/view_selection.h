@@ -11,6 +11,14 @@
 // Labels are restricted to each face's candidates (FaceViewCandidates). Messages are updated face by
 // face in a forward then a backward sweep (deterministic, no dependence on threads), until at most
 // `converged_fraction` of the labels change in a sweep, or `max_iterations` sweeps.
+//
+// A dive's mesh is solved one region at a time, so that the messages (about 150 bytes per face) are held
+// for one region, not for the whole mesh: regions of at most `max_region_faces` faces are grown
+// breadth-first along the surface from the lowest-numbered face not yet labelled, and solved in the
+// order they are grown. A face of a region next to a face of a region solved before sees that face's
+// label as fixed: its Potts term joins the face's data term. Labels therefore agree across region
+// borders as they do inside a region, and what is held for the whole mesh is the labels (4 bytes a
+// face). A mesh of at most `max_region_faces` faces is one region: the whole MRF at once.
 
 #include <cstdint>
 #include <limits>
@@ -31,6 +39,8 @@ struct ViewSelectionOptions {
   int max_iterations = 20;
   // Sweeps stop when at most this fraction of the faces changed label in the last one.
   double converged_fraction = 0.001;
+  // Most faces solved together (see above); at least 1.
+  std::size_t max_region_faces = 131072;
   void Check() const;
 };
 
@@ -41,7 +51,8 @@ struct ViewSelection {
   // The same energy with every face on its best view (no smoothness): what the MRF trades against.
   double best_view_data_cost = 0.0;
   double best_view_smoothness_cost = 0.0;
-  int iterations = 0;
+  int iterations = 0;    // sweeps, the most over the regions
+  std::size_t num_regions = 0;
 };
 
 ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjacency& adjacency,

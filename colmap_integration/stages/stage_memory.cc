@@ -18,13 +18,17 @@ constexpr double kRayTableBytesPerPixel = 12.0;
 
 MemoryEstimate TextureBakingMemory(const TextureBakingOptions& baking, std::size_t num_faces) {
   // Per face, with L views kept per face (face_view_candidates.h) and 3 neighbours (face_adjacency.h):
-  //   candidates L x 8 + 1; selection data costs 4 L + 8 and messages 3 x (4 L + 8) (view_selection.cc);
-  //   its labels, costs and view 32; neighbours 3 x 4 + 8; chart face id and corner texels 4 + 3 x 8;
-  //   texel range 16 (texel_layout.h).
+  //   candidates L x 8 + 1; the chosen view 4; neighbours 3 x 4 + 8; chart face id and corner texels
+  //   4 + 3 x 8; texel range 16 (texel_layout.h). Per face of a view selection region
+  //   (view_selection.h): data costs 4 L + 8, messages 3 x (4 L + 8), neighbours 3 x 4 + 8, labels and
+  //   face ids 12.
   const double views = baking.visibility.max_views_per_face;
-  const double per_face = (8.0 * views + 1.0) + 4.0 * (4.0 * views + 8.0) + 32.0 + 20.0 + 28.0 + 16.0;
+  const double per_face = (8.0 * views + 1.0) + 4.0 + 20.0 + 28.0 + 16.0;
+  const double per_region_face = 4.0 * (4.0 * views + 8.0) + 20.0 + 12.0;
   MemoryEstimate estimate;
   estimate.Add("the faces' view and chart tables", static_cast<double>(num_faces), per_face);
+  estimate.Add("the view selection of a region", static_cast<double>(std::min(num_faces, baking.selection.max_region_faces)),
+               per_region_face);
   estimate.Add("the texel fusion's budget", 1.0, static_cast<double>(baking.fusion.memory_limit_bytes));
   return estimate;
 }

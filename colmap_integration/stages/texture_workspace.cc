@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <chrono>
 #include <stdexcept>
+#include <string>
 
 #include "colmap_integration/io/sparse_model_io.h"
 #include "colmap_integration/io/workspace.h"
@@ -98,7 +99,9 @@ void PrintTextureSummary(std::ostream& out, const TextureSummary& summary) {
             << std::setprecision(2) << "  view selection: energy " << baking.selection.data_cost << " data + "
             << baking.selection.smoothness_cost << " seams (best view per face: "
             << baking.selection.best_view_data_cost << " + " << baking.selection.best_view_smoothness_cost << "), "
-            << baking.selection.iterations << " sweeps\n"
+            << baking.selection.iterations << " sweeps"
+            << (baking.selection.num_regions > 1 ? " (the most in one of " + std::to_string(baking.selection.num_regions) + " regions)" : "")
+            << "\n"
             << "  fusion: " << baking.fusion.mean_samples_per_texel << " views per texel, "
             << baking.fusion.rejected_samples << " outlier samples rejected, " << baking.fusion.texels_without_samples
             << " texels seen by no view, " << baking.fusion.num_passes << " pass(es)\n"

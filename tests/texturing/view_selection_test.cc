@@ -99,5 +99,57 @@ TEST(ViewSelection, FacesNoViewSeesStayUnlabelled) {
   EXPECT_EQ(selection.view_of_face[25], kNoView);
 }
 
+// A 60 x 40 grid of cells (4800 faces) seen by four views. On the left half they are all nearly equal
+// (within 15 %, noise): the optimum gives the half one view, whichever. On the right half view 3 is 3 x
+// better. So the best labelling has one seam line, down the middle.
+FaceViewCandidates HalfEqualHalfClear(const Mesh& mesh) {
+  FaceViewCandidates candidates(mesh.faces.size(), 4);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> noise(1.0f, 1.15f);
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+    const double x = (mesh.vertices[mesh.faces[f][0]] + mesh.vertices[mesh.faces[f][1]] + mesh.vertices[mesh.faces[f][2]]).x() / 3.0;
+    for (std::uint32_t view = 0; view < 4; ++view) {
+      candidates.Offer(f, {view, (x > 30.0 && view == 3 ? 3.0f : 1.0f) * noise(random)});
+    }
+  }
+  return candidates;
+}
+
+TEST(ViewSelection, RegionsSolvedOneAfterAnotherAgreeAcrossTheirBorders) {
+  const Mesh mesh = MakeHeightFieldMesh([](double, double) { return 0.0; }, 0.0, 60.0, 0.0, 40.0, 60, 40);
+  const FaceAdjacency adjacency(mesh);
+  const FaceViewCandidates candidates = HalfEqualHalfClear(mesh);
+  const ViewSelection whole = SelectViews(candidates, adjacency, {});
+  ASSERT_EQ(whole.num_regions, 1u);
+  ViewSelectionOptions options;
+  options.max_region_faces = 300;
+  const ViewSelection regions = SelectViews(candidates, adjacency, options);
+  EXPECT_GE(regions.num_regions, 16u);
+  // The seam down the middle crosses 40 cell edges; loopy belief propagation leaves a few more (104 for
+  // the whole MRF; 91 in regions). Regions that ignored their solved neighbours would each pick their own
+  // view on the left half and add seams along the region borders there (203 such; checked).
+  const double whole_seams = whole.smoothness_cost / options.smoothness;
+  const double region_seams = regions.smoothness_cost / options.smoothness;
+  EXPECT_LE(whole_seams, 150.0);
+  EXPECT_LE(region_seams, 1.25 * whole_seams);
+  EXPECT_LE(regions.data_cost + regions.smoothness_cost, 1.1 * (whole.data_cost + whole.smoothness_cost));
+  std::size_t right_on_view_3 = 0, right = 0;
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+    const double x = (mesh.vertices[mesh.faces[f][0]] + mesh.vertices[mesh.faces[f][1]] + mesh.vertices[mesh.faces[f][2]]).x() / 3.0;
+    if (x <= 30.0) continue;
+    ++right;
+    right_on_view_3 += regions.view_of_face[f] == 3u;
+  }
+  EXPECT_EQ(right_on_view_3, right);
+}
+
+TEST(ViewSelection, ARegionMustHoldAFace) {
+  const Mesh mesh = Strip();
+  const FaceAdjacency adjacency(mesh);
+  ViewSelectionOptions options;
+  options.max_region_faces = 0;
+  EXPECT_THROW(SelectViews(TwoViews(40, 0, 0, 1.0f), adjacency, options), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace lutex

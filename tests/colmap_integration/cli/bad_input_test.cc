@@ -305,7 +305,7 @@ std::vector<BadInput> Cases() {
        "more than the memory limit of 1 MiB"},
       // Above what the dive needs without the faces' tables (about 5 MiB with a 1 MiB fusion budget).
       {"TextureMemoryLimitBelowWhatTheFacesNeed", {}, "texture" + kDive + " --fusion-memory 1 --memory-limit 6",
-       "{D}/W", "the faces' view and chart tables 2 MiB"},
+       "{D}/W", "the faces' view and chart tables 1 MiB, the view selection of a region 1 MiB"},
   };
 }
 
