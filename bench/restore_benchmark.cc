@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
     scene.Render(rays, image->cam_from_world, maps_options, &maps);
     cast += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
-    const cv::Mat without_forward_scatter = WithoutForwardScatter(linear, maps, rays, coastal);
+    const cv::Mat without_forward_scatter = WithoutForwardScatter(linear, maps, rays, coastal, restore.restoration.saturation_level);
     forward_scatter += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
     RestoreImage(linear, maps, rays, lut, restore.restoration, nullptr, &result);

@@ -25,6 +25,7 @@
 #include "lib/calibration/charuco_target.h"
 #include "lib/calibration/exposure_gains.h"
 #include "lib/calibration/chessboard_target.h"
+#include "lib/calibration/backscatter_set_aside.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/reshading.h"
 #include "lib/calibration/targets.h"
@@ -75,10 +76,9 @@ const Camera& SingleImageSize(const SparseModel& model, const fs::path& where) {
 
 // Known-colour observations from the images of `workspace` (the targets' geometry from `scene`), per image
 // in parallel, gathered in image order so the solve is the same at any thread count.
-ObservationSet KnownColorObservations(const CalibrateOptions& options,
-                                                          const std::vector<Target>& targets,
-                                                          const Workspace& workspace, const SparseModel& model,
-                                                          const RaycastScene& scene) {
+ObservationSet KnownColorObservations(const CalibrateOptions& options, const std::vector<Target>& targets,
+                                      const Workspace& workspace, const SparseModel& model, const RaycastScene& scene,
+                                      const BackscatterSetAside& backscatter) {
   KnownColorSamplingOptions sampling = options.sampling;
   sampling.shading = options.calibration.grid.shading;
   std::map<std::uint32_t, std::vector<KnownColorObservation>> per_image;
@@ -86,7 +86,9 @@ ObservationSet KnownColorObservations(const CalibrateOptions& options,
   ForEachImageWithMaps(model, scene, options.num_threads, "target images",
                        [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
     const cv::Mat observed = WithoutForwardScatter(ReadLinearImage(workspace.images_dir / image.name, options.input_encoding),
-                                                   maps, rays, options.calibration.grid.forward_scatter);
+                                                   maps, rays, options.calibration.grid.forward_scatter,
+                                                   sampling.saturation_level,
+                                                   backscatter.For(maps, workspace.images_dir, image.name));
     const cv::Mat known = KnownAlbedoImage(targets, maps, rays, image.cam_from_world);
     std::vector<KnownColorObservation> observations = SampleKnownColors(observed, known, maps, rays, sampling);
     // In a survey most images show no target; in calibration images that is worth a warning.
@@ -144,7 +146,7 @@ std::function<std::optional<BoardMaps>(const cv::Mat&, const CameraRays&)> Board
 // Known colours from the board (chessboard or ChArUco) in every image of options.chessboard_images (sorted
 // by name; images where OpenCV does not find it are skipped with a warning).
 ObservationSet ChessboardObservations(const CalibrateOptions& options, const Camera& camera,
-                                      CalibrateSummary* summary) {
+                                      const BackscatterSetAside& backscatter, CalibrateSummary* summary) {
   std::string board_name;
   const auto find_board = BoardFinder(options.chessboard, camera, &board_name);
   if (!fs::is_directory(options.chessboard_images)) {
@@ -177,7 +179,10 @@ ObservationSet ChessboardObservations(const CalibrateOptions& options, const Cam
     if (!board) {
       LogWarning() << paths[i].string() << ": no " << board_name << " found; the image is skipped";
     } else {
-      per_image[i] = SampleKnownColors(WithoutForwardScatter(image, board->maps, rays, options.calibration.grid.forward_scatter),
+      per_image[i] = SampleKnownColors(WithoutForwardScatter(image, board->maps, rays, options.calibration.grid.forward_scatter,
+                                                             sampling.saturation_level,
+                                                             backscatter.For(board->maps, paths[i].parent_path(),
+                                                                             paths[i].filename().string())),
                                        board->known_albedo, board->maps, rays, sampling);
     }
     progress.Advance();
@@ -329,9 +334,10 @@ void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationR
 }
 
 // Every observation the options ask for: known colours from the targets (in the workspace's images or
-// separate ones) and the board, correspondences across the survey, pure-water bounds.
+// separate ones) and the board, correspondences across the survey, pure-water bounds; with `backscatter`
+// set aside where forward scattering is taken out.
 ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedDive& dive, const Camera& camera,
-                                  CalibrateSummary* summary) {
+                                  const BackscatterSetAside& backscatter, CalibrateSummary* summary) {
   const Workspace& workspace = dive.workspace();
   const SparseModel& model = dive.model();
   ObservationSet observations;
@@ -343,16 +349,18 @@ ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedD
       const Mesh targets_mesh = ReadMesh(options.targets_mesh);
       CheckSameImageSize(SingleImageSize(targets_model, targets_workspace.sparse_dir), camera, targets_workspace);
       const RaycastScene targets_scene(targets_mesh);
-      MergeObservations(KnownColorObservations(options, targets, targets_workspace, targets_model, targets_scene),
-                        &observations);
+      MergeObservations(
+          KnownColorObservations(options, targets, targets_workspace, targets_model, targets_scene, backscatter),
+          &observations);
       summary->num_target_images = targets_model.images.size();
     } else {
-      MergeObservations(KnownColorObservations(options, targets, workspace, model, dive.scene()), &observations);
+      MergeObservations(KnownColorObservations(options, targets, workspace, model, dive.scene(), backscatter),
+                        &observations);
       summary->num_target_images = model.images.size();
     }
   }
   if (!options.chessboard.empty()) {
-    MergeObservations(ChessboardObservations(options, camera, summary), &observations);
+    MergeObservations(ChessboardObservations(options, camera, backscatter, summary), &observations);
   }
   if (options.correspondences) {
     SurveyCorrespondenceOptions extraction = options.correspondence_extraction;
@@ -360,6 +368,7 @@ ObservationSet GatherObservations(const CalibrateOptions& options, const LoadedD
     extraction.views.shading = options.calibration.grid.shading;
     extraction.input_encoding = options.input_encoding;
     extraction.forward_scatter = options.calibration.grid.forward_scatter;
+    extraction.backscatter = backscatter;
     extraction.num_threads = options.num_threads;
     SurveyCorrespondences survey = ExtractSurveyCorrespondences(workspace.images_dir, model, dive.scene(), extraction);
     summary->num_superpixel_samples = survey.num_samples;
@@ -556,43 +565,60 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   calibration.num_threads = options.num_threads;
   calibration.Check();
 
+  // Samples the observations (with `backscatter` set aside) and solves: the rig (fitted when asked, then
+  // kept), the water prior, the LUT, the exposure gains.
+  ObservationSet observations;
+  const auto gather_and_solve = [&](const BackscatterSetAside& backscatter, CalibrateSummary* summary) {
+    summary->num_images = dive.model().images.size();
+    observations = GatherObservations(options, dive, camera, backscatter, summary);
+    summary->num_observation_images = observations.images.size();
+    DivideOutExifExposure(options, &observations, summary);
+    // Not when the user said where the light is (a rig file, or --shading-light).
+    if (options.fit_rig && calibration.grid.shading.rig.lights.empty() &&
+        calibration.grid.shading.light_in_cam.isZero()) {
+      // Shading with the fitted rig: fit it to the observations shaded from the camera, then shade them
+      // with it (their cos_theta depends on the rig).
+      const WaterPrior guess =
+          FitWaterPrior(observations, ShadingRig(options), camera, calibration.grid, WaterPriorOptionsOf(options));
+      LogInfo() << "shading with the fitted rig: " << DescribeWaterPrior(guess);
+      options.calibration.grid.shading.rig = guess.rig;
+      calibration.grid.shading.rig = guess.rig;
+      Reshade(calibration.grid.shading,
+              std::min(options.sampling.min_cos_theta, options.correspondence_extraction.views.min_cos_theta),
+              &observations);
+    }
+    summary->albedo_span = SpanOfKnownColours(observations.known_colors);
+    summary->warnings = NarrowSpanWarnings(summary->albedo_span, calibration.in_air, !observations.pure_water.empty(),
+                                           !observations.correspondences.empty());
+    LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour, "
+              << observations.correspondences.size() << " correspondence and " << observations.pure_water.size()
+              << " pure-water observations";
+    const FrustumLut reference = ReferenceLut(options, camera, calibration.grid, observations, summary);
+    CalibrationResult solved = Calibrate(observations, reference, calibration);
+    const bool fit_gains = !observations.correspondences.empty() &&
+                           (options.exposure_gains == "fit" ||
+                            (options.exposure_gains == "auto" && !observations.known_colors.empty()));
+    if (fit_gains) {
+      const ExposureGains gains = FitExposureGains(observations, solved.lut);
+      RecordFittedGains(gains, observations, dive, summary);
+      DivideOutExposureGains(gains.gains, &observations);
+      LogInfo() << "calibrating again with the exposure gains divided out";
+      solved = Calibrate(observations, reference, calibration);
+    }
+    return solved;
+  };
   CalibrateSummary summary;
-  summary.num_images = dive.model().images.size();
-  ObservationSet observations = GatherObservations(options, dive, camera, &summary);
-  summary.num_observation_images = observations.images.size();
-  DivideOutExifExposure(options, &observations, &summary);
-  // Not when the user said where the light is (a rig file, or --shading-light).
-  if (options.fit_rig && calibration.grid.shading.rig.lights.empty() &&
-      calibration.grid.shading.light_in_cam.isZero()) {
-    // Shading with the fitted rig: fit it to the observations shaded from the camera, then shade them
-    // with it (their cos_theta depends on the rig).
-    const WaterPrior guess =
-        FitWaterPrior(observations, ShadingRig(options), camera, calibration.grid, WaterPriorOptionsOf(options));
-    LogInfo() << "shading with the fitted rig: " << DescribeWaterPrior(guess);
-    options.calibration.grid.shading.rig = guess.rig;
-    calibration.grid.shading.rig = guess.rig;
-    Reshade(calibration.grid.shading, std::min(options.sampling.min_cos_theta, options.correspondence_extraction.views.min_cos_theta),
-            &observations);
+  CalibrationResult result = gather_and_solve(BackscatterSetAside{}, &summary);
+  if (!calibration.grid.forward_scatter.IsNone()) {
+    // Forward scattering spreads the light from the surfaces, not the backscatter, which the first LUT
+    // now estimates (backscatter_set_aside.h).
+    LogInfo() << "sampling again with the first LUT's backscatter set aside from the forward scattering";
+    const CalibrationResult first = std::move(result);
+    const CalibrateSummary first_summary = summary;
+    summary = {};
+    result = gather_and_solve(BackscatterSetAside{&first.lut, &first_summary.exposure}, &summary);
   }
-  summary.albedo_span = SpanOfKnownColours(observations.known_colors);
-  summary.warnings = NarrowSpanWarnings(summary.albedo_span, calibration.in_air, !observations.pure_water.empty(),
-                                        !observations.correspondences.empty());
   for (const std::string& warning : summary.warnings) LogWarning() << warning;
-  LogInfo() << "calibrating from " << observations.known_colors.size() << " known-colour, "
-            << observations.correspondences.size() << " correspondence and " << observations.pure_water.size()
-            << " pure-water observations";
-  const FrustumLut reference = ReferenceLut(options, camera, calibration.grid, observations, &summary);
-  CalibrationResult result = Calibrate(observations, reference, calibration);
-  const bool fit_gains = !observations.correspondences.empty() &&
-                         (options.exposure_gains == "fit" ||
-                          (options.exposure_gains == "auto" && !observations.known_colors.empty()));
-  if (fit_gains) {
-    const ExposureGains gains = FitExposureGains(observations, result.lut);
-    RecordFittedGains(gains, observations, dive, &summary);
-    DivideOutExposureGains(gains.gains, &observations);
-    LogInfo() << "calibrating again with the exposure gains divided out";
-    result = Calibrate(observations, reference, calibration);
-  }
 
   summary.restored_observations = RestoreObservations(result.lut, observations);
   CheckSolveIsPlausible(summary.restored_observations);

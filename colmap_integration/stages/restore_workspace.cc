@@ -190,10 +190,14 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
       skip_or_throw(error);  // unreadable pixels behind a sound header (a truncated file)
       return;
     }
-    // As the calibration did before it fitted the LUT.
-    observed = WithoutForwardScatter(observed, maps, rays, lut.grid().forward_scatter);
     bool missing_exif = false;
     const double gain = exposure ? exposure->GainOf(workspace.images_dir, image.name, &missing_exif) : 1.0;
+    // As the calibration did before it fitted the LUT: the scattering taken out of the light from the
+    // surfaces, the LUT's backscatter (at this image's exposure) set aside.
+    if (!lut.grid().forward_scatter.IsNone()) {
+      observed = WithoutForwardScatter(observed, maps, rays, lut.grid().forward_scatter,
+                                       options.restoration.saturation_level, BackscatterAtSurfaces(lut, maps, gain));
+    }
     // Divided by its gain, the image's clipping level and noise are divided too.
     RestorationOptions restoration = options.restoration;
     if (gain != 1.0) {

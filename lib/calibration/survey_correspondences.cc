@@ -87,7 +87,9 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
   ForEachImageWithMaps(model, scene, options.num_threads, "superpixels",
                        [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
     const cv::Mat observed = WithoutForwardScatter(ReadLinearImage(images_dir / image.name, options.input_encoding),
-                                                   maps, rays, options.forward_scatter);
+                                                   maps, rays, options.forward_scatter,
+                                                   options.superpixels.saturation_level,
+                                                   options.backscatter.For(maps, images_dir, image.name));
     ImageSamples result;
     result.samples = SampleSuperpixels(observed, maps, rays, options.superpixels);
     const Rigid3d world_from_cam = image.cam_from_world.Inverse();
@@ -119,7 +121,8 @@ SurveyCorrespondences ExtractSurveyCorrespondences(const std::filesystem::path& 
                        [&](const Image& image, const CameraRays& rays, const GeometryMaps& maps, int) {
     const auto asking = askers.find(image.image_id);
     const cv::Mat observed = WithoutForwardScatter(ReadLinearImage(images_dir / image.name, options.input_encoding),
-                                                   maps, rays, options.forward_scatter);
+                                                   maps, rays, options.forward_scatter, options.views.saturation_level,
+                                                   options.backscatter.For(maps, images_dir, image.name));
     const ViewedImage other{observed, maps, rays, image.cam_from_world};
     std::vector<std::pair<std::uint32_t, Match>> found;
     for (const auto& [a, rank] : asking->second) {

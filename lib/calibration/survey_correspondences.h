@@ -22,6 +22,7 @@
 #include "lib/calibration/observations.h"
 #include "lib/calibration/superpixel_samples.h"
 #include "lib/image/image_io.h"
+#include "lib/calibration/backscatter_set_aside.h"
 #include "lib/model/forward_scatter.h"
 #include "lib/raycast/raycast_scene.h"
 
@@ -33,8 +34,10 @@ struct SurveyCorrespondenceOptions {
   int partners = 4;    // views per sample, at most (the paper pairs each superpixel with one image)
   int candidates = 8;  // images tried per image
   ImageEncoding input_encoding = ImageEncoding::kSrgb8;
-  // Taken out of every image before it is sampled (lib/model/forward_scatter.h): the LUT's.
+  // Taken out of every image before it is sampled (lib/model/forward_scatter.h): the LUT's, with
+  // `backscatter` set aside (backscatter_set_aside.h).
   ForwardScatter forward_scatter;
+  BackscatterSetAside backscatter;
   int num_threads = 0;
 
   void Check() const;

@@ -205,15 +205,16 @@ void ParseLutGrid(const json& root, SceneDescription* scene) {
   scene->lut_grid.Check();
 }
 
-// "simulator": backscatter integration and shadows.
+// "simulator": backscatter integration, shadows and forward scattering.
 void ParseSimulator(const json& root, SceneDescription* scene) {
   if (root.contains("simulator")) {
     const json& simulator = root["simulator"];
-    ExpectKeys(simulator, "simulator", {"backscatter_steps", "max_range", "shadows"});
+    ExpectKeys(simulator, "simulator", {"backscatter_steps", "max_range", "shadows", "forward_scatter"});
     scene->simulator.backscatter_steps =
         static_cast<int>(IntegerField(simulator, "backscatter_steps", "simulator", 96, 1, 100000));
     scene->simulator.max_range = NumberField(simulator, "max_range", "simulator", 30.0);
     if (simulator.contains("shadows")) scene->simulator.shadows = simulator["shadows"].get<bool>();
+    if (simulator.contains("forward_scatter")) scene->simulator.forward_scatter = simulator["forward_scatter"].get<bool>();
     scene->simulator.Check();
   }
 }

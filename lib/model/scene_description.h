@@ -21,7 +21,7 @@
 //              "sparse_points": 0, "sparse_point_noise": 0}  (3-D points per image, as SfM gives them:
 //              lib/model/sparse_points.h; their position noise in metres),
 //   "lut": {"nx": 40, "ny": 30, "nz": 10, "z_near": 0.5, "z_far": 5, "spacing": "inverse_z" | "z"},
-//   "simulator": {"backscatter_steps": 96, "max_range": 30, "shadows": true}
+//   "simulator": {"backscatter_steps": 96, "max_range": 30, "shadows": true, "forward_scatter": false}
 // }
 
 #include <filesystem>

@@ -1,8 +1,10 @@
 #include "lib/model/simulator.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
+#include "lib/model/forward_scatter.h"
 #include "lib/util/parallel_for.h"
 
 namespace lutex {
@@ -104,18 +106,22 @@ cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backsc
   map_options.num_threads = options_.num_threads;
   const GeometryMaps maps = RenderGeometry(rays, cam_from_world, map_options);
   const Rigid3d world_from_cam = cam_from_world.Inverse();
+  // The direct term and the backscatter apart, so that forward scattering spreads only the former.
   cv::Mat radiance(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(0));
+  cv::Mat veil(rays.height(), rays.width(), CV_32FC3, cv::Scalar::all(0));
+  cv::Mat range_map(rays.height(), rays.width(), CV_32F, cv::Scalar::all(std::numeric_limits<float>::quiet_NaN()));
   ParallelFor(static_cast<std::size_t>(rays.height()), options_.num_threads, [&](std::size_t row_index) {
     const int row = static_cast<int>(row_index);
     for (int col = 0; col < rays.width(); ++col) {
       const Eigen::Vector3d direction = rays.Direction(col, row).cast<double>();
       if (!direction.allFinite()) continue;
       const float depth = maps.depth.at<float>(row, col);
-      Eigen::Vector3d value;
+      Eigen::Vector3d value = Eigen::Vector3d::Zero(), scattered;
       if (std::isnan(depth)) {
-        value = backscatter.Lookup(col + 0.5, row + 0.5, options_.max_range);
+        scattered = backscatter.Lookup(col + 0.5, row + 0.5, options_.max_range);
       } else {
         const double range = depth / direction.z();
+        range_map.at<float>(row, col) = static_cast<float>(range);
         const Eigen::Vector3d point = range * direction;
         const int face = maps.face_id.at<int>(row, col);
         const cv::Vec2f b = maps.barycentrics.at<cv::Vec2f>(row, col);
@@ -136,13 +142,26 @@ cv::Mat Simulator::Render(const CameraRays& rays, const BackscatterTable& backsc
           irradiance += term.array() * cos_incidence;
         }
         const Eigen::Array3d to_camera = (-water_.Attenuation().array() * range).exp();
-        value = (irradiance * to_camera * albedo.array() / M_PI).matrix() + backscatter.Lookup(col + 0.5, row + 0.5, range);
+        value = (irradiance * to_camera * albedo.array() / M_PI).matrix();
+        scattered = backscatter.Lookup(col + 0.5, row + 0.5, range);
       }
       radiance.at<cv::Vec3f>(row, col) =
           cv::Vec3f(static_cast<float>(value.x()), static_cast<float>(value.y()), static_cast<float>(value.z()));
+      veil.at<cv::Vec3f>(row, col) =
+          cv::Vec3f(static_cast<float>(scattered.x()), static_cast<float>(scattered.y()), static_cast<float>(scattered.z()));
     }
   });
-  return radiance;
+  if (options_.forward_scatter) {
+    const ForwardScatter scatter = ForwardScatter::Of(water_);
+    if (!scatter.IsNone()) {
+      const Camera& camera = rays.camera();
+      radiance = AddForwardScatter(radiance, range_map,
+                                   MakeForwardScatterKernel(scatter.anisotropy_g,
+                                                            0.5 * (camera.FocalLengthX() + camera.FocalLengthY())),
+                                   scatter.scattering);
+    }
+  }
+  return radiance + veil;
 }
 
 cv::Mat Simulator::RenderAlbedo(const CameraRays& rays, const Rigid3d& cam_from_world) const {

@@ -56,6 +56,12 @@ struct SimulatorOptions {
   double max_range = 30.0;
   // Cast shadow rays to the lights.
   bool shadows = true;
+  // Spread the light from the surface by the water's forward scattering on its way to the camera
+  // (lib/model/forward_scatter.h, with the water's b and g): the direct term is rendered, then
+  // AddForwardScatter redistributes it over the ray-cast ranges; backscatter is added after. The same
+  // operator that `--remove-forward-scatter` inverts, so TrueLut stays exact for an image it corrected.
+  // Off: the surface is seen sharp at any range (the renders milestone 1's tests were made with).
+  bool forward_scatter = false;
   // Threads over image rows; <= 0 means all cores.
   int num_threads = 0;
 

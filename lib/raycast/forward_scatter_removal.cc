@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "lib/lut/lut_image_sampler.h"
+
 namespace lutex {
 
 cv::Mat RangeAlongRays(const GeometryMaps& maps, const CameraRays& rays) {
@@ -23,13 +25,51 @@ cv::Mat RangeAlongRays(const GeometryMaps& maps, const CameraRays& rays) {
   return range;
 }
 
+cv::Mat BackscatterAtSurfaces(const FrustumLut& lut, const GeometryMaps& maps, double gain) {
+  const FrustumLutGrid& grid = lut.grid();
+  if (maps.origin != cv::Point(0, 0) || maps.depth.cols != grid.image_width || maps.depth.rows != grid.image_height) {
+    throw std::invalid_argument("BackscatterAtSurfaces needs the maps of the LUT's whole image");
+  }
+  const LutImageSampler sampler(lut);
+  LutImageSampler::RowSampler row_sampler;
+  cv::Mat backscatter(maps.depth.size(), CV_32FC3, cv::Scalar::all(0));
+  const auto scale = static_cast<float>(gain);
+  for (int row = 0; row < backscatter.rows; ++row) {
+    sampler.PrepareRow(row, &row_sampler);
+    const float* depth = maps.depth.ptr<float>(row);
+    cv::Vec3f* out = backscatter.ptr<cv::Vec3f>(row);
+    for (int col = 0; col < backscatter.cols; ++col) {
+      if (!std::isfinite(depth[col])) continue;
+      const LutPixelSample sample = row_sampler.At(col, depth[col]);
+      out[col] = cv::Vec3f(scale * sample.beta[0], scale * sample.beta[1], scale * sample.beta[2]);
+    }
+  }
+  return backscatter;
+}
+
 cv::Mat WithoutForwardScatter(const cv::Mat& image, const GeometryMaps& maps, const CameraRays& rays,
-                              const ForwardScatter& scatter) {
+                              const ForwardScatter& scatter, double saturation_level, const cv::Mat& backscatter) {
   if (scatter.IsNone()) return image;
+  if (!backscatter.empty() && (backscatter.size() != image.size() || backscatter.type() != CV_32FC3)) {
+    throw std::invalid_argument("WithoutForwardScatter: the backscatter must be CV_32FC3 of the image's size");
+  }
   const Camera& camera = rays.camera();
   const double focal_px = 0.5 * (camera.FocalLengthX() + camera.FocalLengthY());
-  return RemoveForwardScatter(image, RangeAlongRays(maps, rays),
-                              MakeForwardScatterKernel(scatter.anisotropy_g, focal_px), scatter.scattering);
+  const ForwardScatterKernel kernel = MakeForwardScatterKernel(scatter.anisotropy_g, focal_px);
+  cv::Mat corrected = backscatter.empty()
+                          ? RemoveForwardScatter(image, RangeAlongRays(maps, rays), kernel, scatter.scattering)
+                          : RemoveForwardScatter(image - backscatter, RangeAlongRays(maps, rays), kernel,
+                                                 scatter.scattering) + backscatter;
+  const auto level = static_cast<float>(saturation_level);
+  for (int row = 0; row < image.rows; ++row) {
+    const cv::Vec3f* recorded = image.ptr<cv::Vec3f>(row);
+    cv::Vec3f* out = corrected.ptr<cv::Vec3f>(row);
+    for (int col = 0; col < image.cols; ++col) {
+      const cv::Vec3f& value = recorded[col];
+      if (value[0] >= level || value[1] >= level || value[2] >= level) out[col] = value;
+    }
+  }
+  return corrected;
 }
 
 }  // namespace lutex
