@@ -2,9 +2,9 @@
 // workspace of N 8-bit sRGB PNG images (default 24 of 1280 x 960), then (a) decode + encode every image
 // (read, linearise, encode, write: what any tool that touches the images pays), (a') the same writing
 // two images per input (the I/O restore cannot avoid) and (b) `lutex restore`
-// (read, ray-cast, look up, restore, write image and confidence map). Reports both and the ratio, then
-// where restore's time goes: every stage timed on its own on one thread (read, ray cast, restore
-// arithmetic, write image, write confidence map), and what taking forward scattering out of an image
+// (read, ray-cast, look up, restore, smooth the noise, write image and confidence map). Reports both and the
+// ratio, then where restore's time goes: every stage timed on its own on one thread (read, ray cast, restore
+// arithmetic, noise-adaptive smoothing, write image, write confidence map), and what taking forward scattering out of an image
 // costs on top (`--remove-forward-scatter` with coastal water). Not a test.
 //
 //   restore_benchmark [--images 24] [--width 1280] [--num-threads 0]
@@ -26,6 +26,7 @@
 #include "lib/model/water.h"
 #include "lib/raycast/forward_scatter_removal.h"
 #include "lib/raycast/raycast_scene.h"
+#include "lib/restoration/noise_adaptive_smoothing.h"
 #include "lib/util/parallel_for.h"
 
 int main(int argc, char** argv) {
@@ -82,7 +83,7 @@ int main(int argc, char** argv) {
   const CameraRays rays(model.cameras.begin()->second, 1);
   GeometryMapsOptions maps_options;
   maps_options.num_threads = 1;
-  double read = 0.0, cast = 0.0, arithmetic = 0.0, write = 0.0, write_confidence = 0.0, forward_scatter = 0.0;
+  double read = 0.0, cast = 0.0, arithmetic = 0.0, smoothing = 0.0, write = 0.0, write_confidence = 0.0, forward_scatter = 0.0;
   const ForwardScatter coastal = ForwardScatter::Of(*WaterPreset("coastal"));
   GeometryMaps maps;
   RestoredImage result;
@@ -100,13 +101,16 @@ int main(int argc, char** argv) {
     RestoreImage(linear, maps, rays, lut, restore.restoration, nullptr, &result);
     arithmetic += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
+    result.albedo = SmoothNoiseAdaptively(result.albedo, maps.depth == maps.depth, restore.smoothing);
+    smoothing += bench::SecondsSince(start);
+    start = std::chrono::steady_clock::now();
     WriteLinearImage(result.albedo, root / "stages" / image->name, ImageEncoding::kSrgb8);
     write += bench::SecondsSince(start);
     start = std::chrono::steady_clock::now();
     WriteConfidenceMap(result.confidence, root / "stages_confidence" / image->name);
     write_confidence += bench::SecondsSince(start);
   }
-  const double stages = read + cast + arithmetic + write + write_confidence;
+  const double stages = read + cast + arithmetic + smoothing + write + write_confidence;
   const auto share = [&](const char* name, double seconds) {
     std::cout << "  " << name << ": " << seconds / images << " s per image (" << 100.0 * seconds / stages << " %)\n";
   };
@@ -123,6 +127,7 @@ int main(int argc, char** argv) {
   share("read and linearise", read);
   share("ray cast (depth, normal)", cast);
   share("restore (LUT lookup, albedo, confidence)", arithmetic);
+  share("noise-adaptive smoothing", smoothing);
   share("write restored image", write);
   share("write confidence map", write_confidence);
   std::cout << "  with --remove-forward-scatter (coastal water), also: " << forward_scatter / images

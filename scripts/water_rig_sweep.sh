@@ -6,9 +6,10 @@
 # restores the survey and prints the mean absolute error against the true albedo in percentage points.
 # About 8 minutes on 2 cores.
 #
-# usage: scripts/water_rig_sweep.sh [LUTEX_BINARY] [OUTPUT_FOLDER]
-#   LUTEX_BINARY   default build/lutex; pass another build's binary to compare two versions
-#   OUTPUT_FOLDER  default a new folder under /tmp; simulated dives there are reused by later runs
+# usage: [RESTORE_OPTIONS="..."] scripts/water_rig_sweep.sh [LUTEX_BINARY] [OUTPUT_FOLDER]
+#   LUTEX_BINARY     default build/lutex; pass another build's binary to compare two versions
+#   OUTPUT_FOLDER    default a new folder under /tmp; simulated dives there are reused by later runs
+#   RESTORE_OPTIONS  more options for lutex restore, e.g. --no-smooth-noise
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"
 lutex="$(realpath "${1:-$repo/build/lutex}")"
@@ -60,7 +61,7 @@ EOF
       continue
     fi
     "$lutex" restore --workspace "$dive/survey" --mesh "$dive/survey/scene/mesh.ply" --lut "$run/lut.lut" \
-      --output "$run/restored" --output-encoding linear16 --log-level error > /dev/null
+      --output "$run/restored" --output-encoding linear16 --log-level error ${RESTORE_OPTIONS:-} > /dev/null
     /usr/bin/python3 - "$dive/survey" "$run/restored" "$water $rig" <<'EOF'
 import glob, os, sys
 import cv2, numpy as np

@@ -43,6 +43,11 @@ void AddRestoreStageOptions(OptionParser& parser, RestoreOptions* options) {
                  "      without it the first one stops restore, naming it, before anything is written where\n"
                  "      its header shows the fault.");
   parser.AddFlag("no-coverage", &options->ignore_coverage, "Ignore the LUT's coverage in the confidence maps.");
+  parser.AddFlag("smooth-noise", &options->smoothing.enabled,
+                 "Smooth the restored albedo where restoration amplified the noise (far, dark, outside the\n"
+                 "      beams, red in turbid water), as strongly as the noise each image shows, without\n"
+                 "      blurring edges or detail above the noise (README, 'Noise'). --no-smooth-noise keeps\n"
+                 "      every pixel's own value.");
   parser.AddString("output-encoding", &options->output_encoding, "Restored images: same (as the input), srgb8, linear16 or float.");
 }
 

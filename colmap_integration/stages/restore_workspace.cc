@@ -75,6 +75,7 @@ void RestoreOptions::Check() const {
   if (lut.empty()) throw OptionError("{lut} is required");
   if (output_encoding != "same") ParseImageEncoding(output_encoding);
   restoration.Check();
+  smoothing.Check();
 }
 
 namespace {
@@ -207,14 +208,15 @@ RestoreSummary RestoreWorkspace(const RestoreOptions& options, const LoadedDive&
       restoration.read_noise /= gain;
     }
     RestoreImage(observed, maps, rays, lut, restoration, coverage ? &*coverage : nullptr, &restored);
+    const cv::Mat surfaces = maps.depth == maps.depth;
+    if (options.smoothing.enabled) restored.albedo = SmoothNoiseAdaptively(restored.albedo, surfaces, options.smoothing);
     const std::vector<fs::path> outputs = outputs_of(image);
     WriteLinearImage(restored.albedo, outputs[0], output_encoding);
     WriteConfidenceMap(restored.confidence, outputs[1]);
-    const int surfaces = cv::countNonZero(maps.depth == maps.depth);
     const cv::Scalar total = cv::sum(restored.confidence);
     std::lock_guard<std::mutex> lock(summary_mutex);
     confidence_sum += total[0] + total[1] + total[2];
-    surface_pixels += static_cast<std::size_t>(surfaces);
+    surface_pixels += static_cast<std::size_t>(cv::countNonZero(surfaces));
     ++summary.num_images;
     summary.num_exposure_adjusted += gain != 1.0 ? 1 : 0;
     if (missing_exif) summary.missing_exif.push_back(image.name);

@@ -24,6 +24,7 @@
 
 #include "colmap_integration/stages/loaded_dive.h"
 #include "lib/image/image_io.h"
+#include "lib/restoration/noise_adaptive_smoothing.h"
 #include "lib/restoration/restorer.h"
 
 namespace lutex {
@@ -44,6 +45,8 @@ struct RestoreOptions {
   // "same" (as the input), "srgb8", "linear16" or "float" (EXR).
   std::string output_encoding = "same";
   RestorationOptions restoration;
+  // The restored albedo smoothed where its noise is strong (lib/restoration/noise_adaptive_smoothing.h).
+  NoiseAdaptiveSmoothingOptions smoothing;
   int num_threads = 0;
   // The stage refuses to start when its memory estimate (stage_memory.h) exceeds this; 0: the machine's
   // available memory.
