@@ -8,10 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCore>
 
 #include "lib/util/parallel_for.h"
+#include "texturing/seam_levelling_system.h"
 #include "texturing/view_selection.h"
 
 namespace lutex {
@@ -22,6 +21,8 @@ constexpr std::array<float, 3> kEdgePositions{0.25f, 0.5f, 0.75f};
 constexpr double kInvisibleStep = 0.002;
 constexpr int kRobustRounds = 3;
 constexpr double kFadeLengths = 4.0;
+// Conjugate gradients stop at |residual| <= this x |right-hand side|.
+constexpr double kTolerance = 1e-5;
 // Seam points fused per pseudo-page (the fusion writes into pages; these are 4096 wide).
 constexpr int kPageSide = 4096;
 
@@ -250,61 +251,30 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   const double scale = std::max(1.4826 * sorted[sorted.size() / 2], kInvisibleStep);
   sorted = {};
 
-  // The normal equations, reserved column by column so that assembling needs no more than the matrix.
-  Eigen::VectorXi entries_per_column = Eigen::VectorXi::Ones(static_cast<Eigen::Index>(n));
+  // The normal equations (seam_levelling_system.h): the chart edges once, the seam points each round.
+  SeamLevellingSystem system(n, options.fade, options.smoothness);
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
     if (view_of_face[f] == kNoView) continue;
-    for (std::uint32_t v : mesh.faces[f]) {
-      const int u = index(v, view_of_face[f]);
-      if (u >= 0) entries_per_column[u] += 2;
-    }
+    const Mesh::Face& face = mesh.faces[f];
+    for (int k = 0; k < 3; ++k) system.AddEdge(index(face[k], view_of_face[f]), index(face[(k + 1) % 3], view_of_face[f]));
   }
-  for (const auto& unknowns : point_unknowns) {
-    for (int u : unknowns) entries_per_column[u] += 4;
-  }
+  system.FinishEdges();
   // Iteratively reweighted least squares with Cauchy weights on the seam points: a step that texture
   // detail, a particle or a misregistration makes at one point is not spread into the charts.
+  ChannelVectors rhs(static_cast<Eigen::Index>(n), 3), solution;
   for (int round = 0; round < kRobustRounds; ++round) {
-    Eigen::SparseMatrix<double> normal(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    normal.reserve(entries_per_column);
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), 3);
-    for (std::size_t u = 0; u < n; ++u) normal.coeffRef(Eigen::Index(u), Eigen::Index(u)) += options.fade;
-    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
-      if (view_of_face[f] == kNoView) continue;
-      const Mesh::Face& face = mesh.faces[f];
-      for (int k = 0; k < 3; ++k) {
-        // An edge to a vertex the corrections do not reach ties the other end to 0.
-        const int i = index(face[k], view_of_face[f]), j = index(face[(k + 1) % 3], view_of_face[f]);
-        if (i >= 0) normal.coeffRef(i, i) += options.smoothness;
-        if (j >= 0) normal.coeffRef(j, j) += options.smoothness;
-        if (i >= 0 && j >= 0) {
-          normal.coeffRef(i, j) -= options.smoothness;
-          normal.coeffRef(j, i) -= options.smoothness;
-        }
-      }
-    }
+    system.ClearPoints();
+    rhs.setZero();
     for (std::size_t i = 0; i < point_step.size(); ++i) {
       const double weight = 1.0 / (1.0 + (residuals[i] / scale) * (residuals[i] / scale));
       const double t = point_t[i];
       const std::array<double, 4> coefficients{1.0 - t, t, -(1.0 - t), -t};
-      for (int r = 0; r < 4; ++r) {
-        for (int c = 0; c < 4; ++c) {
-          normal.coeffRef(point_unknowns[i][r], point_unknowns[i][c]) += weight * coefficients[r] * coefficients[c];
-        }
-        rhs.row(point_unknowns[i][r]) += weight * coefficients[r] * point_step[i].transpose();
-      }
+      system.AddPoint(point_unknowns[i], point_t[i], weight);
+      for (int r = 0; r < 4; ++r) rhs.row(point_unknowns[i][r]) += weight * coefficients[r] * point_step[i].transpose();
     }
-    normal.makeCompressed();
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver;
-    solver.setMaxIterations(options.max_iterations);
-    solver.setTolerance(1e-5);
-    solver.compute(normal);
+    out.iterations = std::max(out.iterations, system.Solve(rhs, options.max_iterations, kTolerance, &solution));
     corrections.values_.resize(n);
-    for (int channel = 0; channel < 3; ++channel) {
-      const Eigen::VectorXd solution = solver.solve(rhs.col(channel));
-      out.iterations = std::max(out.iterations, static_cast<int>(solver.iterations()));
-      for (std::size_t u = 0; u < n; ++u) corrections.values_[u][channel] = static_cast<float>(solution[Eigen::Index(u)]);
-    }
+    for (std::size_t u = 0; u < n; ++u) corrections.values_[u] = solution.row(Eigen::Index(u)).transpose().cast<float>();
     for (std::size_t i = 0; i < residuals.size(); ++i) residuals[i] = remaining_step(i, corrections.values_);
   }
   for (double r : residuals) out.step_after += r / double(residuals.size());

@@ -14,7 +14,8 @@
 //   + smoothness x sum over the edges (i, j) of every face of view a   |g(i, a) - g(j, a)|^2
 //   + fade x sum |g|^2
 //
-// per channel, by conjugate gradients on the normal equations (Eigen, diagonal preconditioner, from 0).
+// per channel, by conjugate gradients on the normal equations (diagonal preconditioner, from 0; the
+// matrix is never formed: seam_levelling_system.h).
 // The seam weights w_x are Cauchy weights of each point's remaining step (three rounds of reweighting,
 // scale 1.4826 x the median step, at least 0.002): a step that texture detail, a particle or a
 // misregistration makes at one point is not spread into the charts.
@@ -31,9 +32,10 @@
 // levelled alike and their borders stay seamless; the orthomosaic's cells get the same corrections.
 //
 // Only the vertices within 4 fade lengths of a seam (in edges) get unknowns: beyond, a correction would
-// be below e^-4 of the seam's, and it is 0. Memory: the sparse normal matrix (about 15 entries per
-// unknown), the seam points (3 per seam edge) and a byte per vertex; time: one pass over the views plus
-// the solves (single-threaded, so the result does not depend on the thread count).
+// be below e^-4 of the seam's, and it is 0. Memory: the chart edges between unknowns (about 3 of 9 bytes
+// an unknown, and 8 bytes a face edge while they are gathered), the seam points (3 per seam edge) and a
+// byte per vertex; time: one pass over the views plus the solves (single-threaded, so the result does not
+// depend on the thread count).
 
 #include <cstdint>
 #include <string>

@@ -56,10 +56,9 @@ cv::Mat WithoutForwardScatter(const cv::Mat& image, const GeometryMaps& maps, co
   const Camera& camera = rays.camera();
   const double focal_px = 0.5 * (camera.FocalLengthX() + camera.FocalLengthY());
   const ForwardScatterKernel kernel = MakeForwardScatterKernel(scatter.anisotropy_g, focal_px);
-  cv::Mat corrected = backscatter.empty()
-                          ? RemoveForwardScatter(image, RangeAlongRays(maps, rays), kernel, scatter.scattering)
-                          : RemoveForwardScatter(image - backscatter, RangeAlongRays(maps, rays), kernel,
-                                                 scatter.scattering) + backscatter;
+  const cv::Mat from_surfaces = backscatter.empty() ? image : cv::Mat(image - backscatter);
+  cv::Mat corrected = RemoveForwardScatter(from_surfaces, RangeAlongRays(maps, rays), kernel, scatter.scattering);
+  if (!backscatter.empty()) corrected += backscatter;
   const auto level = static_cast<float>(saturation_level);
   for (int row = 0; row < image.rows; ++row) {
     const cv::Vec3f* recorded = image.ptr<cv::Vec3f>(row);
