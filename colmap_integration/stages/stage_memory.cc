@@ -25,10 +25,15 @@ MemoryEstimate TextureBakingMemory(const TextureBakingOptions& baking, std::size
   const double views = baking.visibility.max_views_per_face;
   const double per_face = (8.0 * views + 1.0) + 4.0 + 20.0 + 28.0 + 16.0;
   const double per_region_face = 4.0 * (4.0 * views + 8.0) + 20.0 + 12.0;
+  // Seam levelling (seam_levelling_system.h), per face: at most one (vertex, view) correction (0.5 a face
+  // on the tiles benchmark's survey), each with its solve's six vectors of 3 doubles, its value and view
+  // (16) and about three chart edges of 9 bytes; and the face's three edges while they are gathered (24).
+  const double per_face_levelling = baking.levelling.enabled ? 6.0 * 24.0 + 16.0 + 27.0 + 24.0 : 0.0;
   MemoryEstimate estimate;
   estimate.Add("the faces' view and chart tables", static_cast<double>(num_faces), per_face);
   estimate.Add("the view selection of a region", static_cast<double>(std::min(num_faces, baking.selection.max_region_faces)),
                per_region_face);
+  if (per_face_levelling > 0.0) estimate.Add("the seam levelling", static_cast<double>(num_faces), per_face_levelling);
   estimate.Add("the texel fusion's budget", 1.0, static_cast<double>(baking.fusion.memory_limit_bytes));
   return estimate;
 }

@@ -14,6 +14,11 @@ namespace {
 
 // sigma / E|n - median3x3(n)| for Gaussian noise n (measured over 250,000 samples: 0.723 sigma).
 constexpr double kNoisePerMedianResidual = 1.383;
+// The most a pixel's |rho - median3x3(rho)| counts in the noise estimate (full scale).
+constexpr double kLargestResidual = 1.0;
+// Restored values beyond +-this are averaged as +-this: with noise no smaller than kLeastNoise, squared
+// colour distances then stay far below float's range.
+constexpr float kLargestAlbedo = 1e6f;
 // The noise of a region the estimate finds none in (flat and noise-free): below a 16-bit level.
 constexpr float kLeastNoise = 1e-6f;
 
@@ -45,6 +50,8 @@ cv::Mat NoiseOf(const cv::Mat& albedo, const cv::Mat& surface, int noise_radius)
   cv::Mat median;
   cv::medianBlur(albedo, median, 3);
   cv::Mat residual = cv::abs(albedo - median);
+  // A residual counts at most full scale: one absurd value (an alpha near 0) does not make its window noisy.
+  cv::min(residual, cv::Scalar::all(kLargestResidual), residual);
   cv::Mat on_surface;
   surface.convertTo(on_surface, CV_32F, 1.0 / 255.0);
   cv::threshold(on_surface, on_surface, 0.0, 1.0, cv::THRESH_BINARY);
@@ -109,6 +116,11 @@ cv::Mat SmoothNoiseAdaptively(const cv::Mat& albedo, const cv::Mat& surface,
   // 1 / (cutoff x noise) per channel, and 1 for surface pixels (0 elsewhere).
   std::array<cv::Mat, 3> planes, scales;
   cv::split(albedo, planes.data());
+  // Bounded, so that squared distances stay finite (a tiny alpha can restore to anything).
+  for (cv::Mat& plane : planes) {
+    cv::min(plane, kLargestAlbedo, plane);
+    cv::max(plane, -kLargestAlbedo, plane);
+  }
   cv::split(noise, scales.data());
   const float cutoff = static_cast<float>(options.cutoff);
   for (cv::Mat& scale : scales) {

@@ -10,8 +10,8 @@
 //
 //   1. The noise of each pixel and channel, from the image alone (whatever made it: sensor, compression,
 //      path tracing): sigma(x) = 1.383 x the mean of |rho - median3x3(rho)| over the surface pixels of a
-//      (2 noise_radius + 1)^2 window. For Gaussian noise E|n - median3x3(n)| = 0.723 sigma; texture
-//      and edges in the window raise the estimate a little.
+//      (2 noise_radius + 1)^2 window, each at most 1 (full scale). For Gaussian noise
+//      E|n - median3x3(n)| = 0.723 sigma; texture and edges in the window raise the estimate a little.
 //   2. Each surface pixel becomes the weighted mean of the surface pixels of a (2 radius + 1)^2 window,
 //      with Tukey's biweight (1 - d^2 / cutoff^2)^2 (0 beyond the cutoff), where
 //      d^2 = sum over channels ((rho_c(n) - rho_c(x)) / sigma_c(x))^2: neighbours that differ by more
@@ -21,7 +21,8 @@
 //   3. A pixel unlike all its neighbours (their weights sum below 1: an impulse, a hot pixel, a
 //      path-tracing firefly) takes the median of its 3 x 3 surface neighbourhood instead.
 //
-// Pixels without a surface are neither changed nor used. Single-threaded per image (images are restored
+// Pixels without a surface are neither changed nor used; values beyond +-10^6 (an alpha near 0 restores
+// to anything) are averaged as +-10^6. Single-threaded per image (images are restored
 // in parallel); O(pixels x (2 radius + 1)^2).
 
 #include <opencv2/core.hpp>

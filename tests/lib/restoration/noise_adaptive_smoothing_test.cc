@@ -149,6 +149,21 @@ TEST(NoiseAdaptiveSmoothing, AnImpulseTakesItsNeighbourhoodsMedian) {
   EXPECT_LT(cv::norm(value - truth, cv::NORM_INF), 0.1);
 }
 
+TEST(NoiseAdaptiveSmoothing, AnAbsurdValueStaysFiniteAndLeavesItsNeighboursAlone) {
+  cv::Mat albedo(20, 20, CV_32FC3, cv::Scalar::all(0.5));
+  const cv::Mat surface(20, 20, CV_8U, cv::Scalar(255));
+  cv::RNG rng(2);
+  cv::Mat noise(20, 20, CV_32FC3);
+  rng.fill(noise, cv::RNG::NORMAL, 0.0, 0.02);
+  albedo += noise;
+  albedo.at<cv::Vec3f>(10, 10) = cv::Vec3f(3e37f, -3e37f, 3e37f);  // alpha near 0
+  const cv::Mat smoothed = SmoothNoiseAdaptively(albedo, surface, NoiseAdaptiveSmoothingOptions());
+  EXPECT_TRUE(cv::checkRange(smoothed));
+  const cv::Vec3f centre = smoothed.at<cv::Vec3f>(10, 10), beside = smoothed.at<cv::Vec3f>(10, 11);
+  EXPECT_LT(cv::norm(centre - cv::Vec3f(0.5f, 0.5f, 0.5f), cv::NORM_INF), 0.1);  // the median of its neighbours
+  EXPECT_LT(cv::norm(beside - cv::Vec3f(0.5f, 0.5f, 0.5f), cv::NORM_INF), 0.1);
+}
+
 TEST(NoiseAdaptiveSmoothing, PixelsWithoutASurfaceAreNeitherChangedNorUsed) {
   cv::Mat albedo(20, 20, CV_32FC3, cv::Scalar::all(0.5));
   cv::Mat surface(20, 20, CV_8U, cv::Scalar(255));
