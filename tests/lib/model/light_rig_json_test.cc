@@ -44,7 +44,7 @@ TEST(LightRigJson, AWrittenRigReadsBackAsItWas) {
                               BeamProfile::kCyclesSpot}) {
     Light light;
     light.name = BeamProfileName(profile);
-    light.position_in_cam = Eigen::Vector3d(0.1 * rig.lights.size(), -0.2, 0.05);
+    light.position_in_cam = Eigen::Vector3d(0.1 * static_cast<double>(rig.lights.size()), -0.2, 0.05);
     light.direction_in_cam = Eigen::Vector3d(0.1, 0, 1).normalized();
     light.intensity = Eigen::Vector3d(1, 2, 3);
     light.profile = profile;
