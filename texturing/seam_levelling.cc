@@ -267,8 +267,7 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     rhs.setZero();
     for (std::size_t i = 0; i < point_step.size(); ++i) {
       const double weight = 1.0 / (1.0 + (residuals[i] / scale) * (residuals[i] / scale));
-      const double t = point_t[i];
-      const std::array<double, 4> coefficients{1.0 - t, t, -(1.0 - t), -t};
+      const std::array<double, 4> coefficients = SeamPointCoefficients(point_t[i]);
       system.AddPoint(point_unknowns[i], point_t[i], weight);
       for (int r = 0; r < 4; ++r) rhs.row(point_unknowns[i][r]) += weight * coefficients[r] * point_step[i].transpose();
     }

@@ -5,15 +5,10 @@
 
 namespace lutex {
 
-namespace {
-
-// The point's four coefficients (1 - t, t, -(1 - t), -t).
-std::array<double, 4> Coefficients(float t) {
+std::array<double, 4> SeamPointCoefficients(float t) {
   const double s = t;
   return {1.0 - s, s, -(1.0 - s), -s};
 }
-
-}  // namespace
 
 SeamLevellingSystem::SeamLevellingSystem(std::size_t num_unknowns, double fade, double smoothness)
     : smoothness_(smoothness), diagonal_(num_unknowns, fade), points_diagonal_(num_unknowns, 0.0) {}
@@ -40,7 +35,7 @@ void SeamLevellingSystem::FinishEdges() {
 }
 
 void SeamLevellingSystem::AddPoint(const std::array<int, 4>& unknowns, float t, double weight) {
-  const std::array<double, 4> c = Coefficients(t);
+  const std::array<double, 4> c = SeamPointCoefficients(t);
   for (int r = 0; r < 4; ++r) points_diagonal_[unknowns[r]] += weight * c[r] * c[r];
   points_.push_back({unknowns, t, weight});
 }
@@ -60,7 +55,7 @@ void SeamLevellingSystem::Apply(const ChannelVectors& x, ChannelVectors* y) cons
     y->row(j) -= weight * x.row(i);
   }
   for (const Point& point : points_) {
-    const std::array<double, 4> c = Coefficients(point.t);
+    const std::array<double, 4> c = SeamPointCoefficients(point.t);
     Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
     for (int r = 0; r < 4; ++r) sum += c[r] * x.row(point.unknowns[r]);
     for (int r = 0; r < 4; ++r) y->row(point.unknowns[r]) += point.weight * c[r] * sum;
@@ -76,8 +71,9 @@ int SeamLevellingSystem::Solve(const ChannelVectors& b, int max_iterations, doub
     inverse_diagonal[u] = d > 0.0 ? 1.0 / d : 1.0;
   }
   x->setZero(n, 3);
-  // The preconditioned residual z = D^-1 r is not kept: it enters only r . z and the next direction.
+  // The preconditioned residual z = D^-1 r is kept for one channel at a time.
   ChannelVectors residual = b, direction = inverse_diagonal.asDiagonal() * residual, product(n, 3);
+  Eigen::VectorXd z(n);
   Eigen::Array3d threshold, rz;
   std::array<bool, 3> active{};
   std::array<int, 3> iterations{};
@@ -100,8 +96,9 @@ int SeamLevellingSystem::Solve(const ChannelVectors& b, int max_iterations, doub
         direction.col(c).setZero();
         continue;
       }
-      const double rz_new = residual.col(c).dot(inverse_diagonal.cwiseProduct(residual.col(c)));
-      direction.col(c) = inverse_diagonal.cwiseProduct(residual.col(c)) + (rz_new / rz[c]) * direction.col(c);
+      z = inverse_diagonal.cwiseProduct(residual.col(c));
+      const double rz_new = residual.col(c).dot(z);
+      direction.col(c) = z + (rz_new / rz[c]) * direction.col(c);
       rz[c] = rz_new;
     }
   }

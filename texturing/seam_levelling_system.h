@@ -7,11 +7,11 @@
 // The system matrix is  A = fade I + smoothness L + sum over seam points w_x c_x c_x^T, with L the graph
 // Laplacian of the chart edges between unknowns (an edge to a vertex without an unknown ties its
 // other end to 0) and c_x the point's four coefficients (1 - t, t, -(1 - t), -t). Held as:
-//   - the diagonal of A (fade, the edges' and the points' parts): 8 bytes an unknown;
+//   - the diagonal of A (fade and the edges' part; the points' part): 16 bytes an unknown;
 //   - the distinct edges between unknowns with how many faces have them (an edge shared by two faces of
 //     one view counts twice): 9 bytes an edge, about 3 edges an unknown (8 bytes a face edge while they
 //     are gathered);
-//   - the seam points' unknowns, coefficients and weights, which seam levelling holds anyway.
+//   - the seam points: their four unknowns, t and weight, 32 bytes each.
 // A sparse matrix of the same system took about 15 entries of 12 bytes an unknown, and twice that while
 // it was assembled: at 627,000 unknowns (the 4x-area tiles benchmark) that was the peak of `lutex tiles`.
 // A x costs one pass over the edges and the points, as much as the sparse product did.
@@ -27,6 +27,10 @@
 #include <Eigen/Core>
 
 namespace lutex {
+
+// A seam point's coefficients (1 - t, t, -(1 - t), -t) for its unknowns (p, a), (q, a), (p, b), (q, b):
+// the step c_b - c_a left after corrections g is the step minus sum_r coefficient_r g_r.
+std::array<double, 4> SeamPointCoefficients(float t);
 
 // One value per unknown and channel, a row per unknown.
 using ChannelVectors = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;

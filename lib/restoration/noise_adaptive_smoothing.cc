@@ -46,16 +46,14 @@ cv::Vec3f SurfaceMedian3x3(const cv::Mat& albedo, const cv::Mat& surface, int ro
 // The noise estimate of step 1 (header), CV_32FC3; undefined off the surface. The 3 x 3 median here is
 // OpenCV's, which counts pixels off the surface as 0: the estimate rises a little along the surface's
 // border, nowhere else.
-cv::Mat NoiseOf(const cv::Mat& albedo, const cv::Mat& surface, int noise_radius) {
+// `on_surface`: CV_32F, 1 on the surface and 0 elsewhere.
+cv::Mat NoiseOf(const cv::Mat& albedo, const cv::Mat& on_surface, int noise_radius) {
   cv::Mat median;
   cv::medianBlur(albedo, median, 3);
   cv::Mat residual = cv::abs(albedo - median);
   // A residual counts at most full scale: one absurd value (an alpha near 0) does not make its window noisy.
   cv::min(residual, cv::Scalar::all(kLargestResidual), residual);
-  cv::Mat on_surface;
-  surface.convertTo(on_surface, CV_32F, 1.0 / 255.0);
-  cv::threshold(on_surface, on_surface, 0.0, 1.0, cv::THRESH_BINARY);
-  residual.setTo(cv::Scalar::all(0), surface == 0);
+  residual.setTo(cv::Scalar::all(0), on_surface == 0.0f);
   const cv::Size window(2 * noise_radius + 1, 2 * noise_radius + 1);
   cv::Mat residual_sum, count;
   cv::boxFilter(residual, residual_sum, CV_32F, window, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
@@ -111,9 +109,12 @@ cv::Mat SmoothNoiseAdaptively(const cv::Mat& albedo, const cv::Mat& surface,
   }
   cv::Mat smoothed = albedo.clone();
   if (!options.enabled || albedo.empty()) return smoothed;
-  const cv::Mat noise = NoiseOf(albedo, surface, options.noise_radius);
-  // Planes, so that the inner loop runs over contiguous floats of one row (and vectorises): the channels,
-  // 1 / (cutoff x noise) per channel, and 1 for surface pixels (0 elsewhere).
+  cv::Mat on_surface;
+  cv::threshold(surface, on_surface, 0, 1, cv::THRESH_BINARY);
+  on_surface.convertTo(on_surface, CV_32F);
+  const cv::Mat noise = NoiseOf(albedo, on_surface, options.noise_radius);
+  // Planes, so that the inner loop runs over contiguous floats of one row (and vectorises): the channels
+  // and 1 / (cutoff x noise) per channel (and on_surface above).
   std::array<cv::Mat, 3> planes, scales;
   cv::split(albedo, planes.data());
   // Bounded, so that squared distances stay finite (a tiny alpha can restore to anything).
@@ -127,9 +128,6 @@ cv::Mat SmoothNoiseAdaptively(const cv::Mat& albedo, const cv::Mat& surface,
     cv::max(scale, kLeastNoise, scale);
     cv::divide(1.0 / cutoff, scale, scale);
   }
-  cv::Mat on_surface;
-  cv::threshold(surface, on_surface, 0, 1, cv::THRESH_BINARY);
-  on_surface.convertTo(on_surface, CV_32F);
   const int radius = options.radius, width = albedo.cols;
   std::vector<float> sum0(width), sum1(width), sum2(width), weight_sum(width);
   for (int row = 0; row < albedo.rows; ++row) {
