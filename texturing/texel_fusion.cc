@@ -16,6 +16,7 @@
 #include "lib/geometry/spatial_batches.h"
 #include "lib/util/parallel_for.h"
 #include "lib/util/progress.h"
+#include "texturing/view_pixel_depths.h"
 
 namespace lutex {
 
@@ -133,9 +134,54 @@ cv::Rect SampledWindow(const Mesh& mesh, const TextureView& view, const std::vec
   return cv::Rect(col0, row0, col1 - col0, row1 - row0);
 }
 
-// Samples `view` at the texels of `faces` into `samples`. `maps` may be a window of the view; `colour` and
-// `confidence` (empty: every pixel trusted) are the pixels of `window`.
-void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_index, const GeometryMaps& maps,
+// Where a texel falls in a view: its surface point, the point in the camera frame, and the top-left pixel
+// of its bilinear footprint with the fractions towards the next column and row.
+struct TexelInView {
+  Eigen::Vector3d point_in_world, point_in_cam;
+  int col0 = 0, row0 = 0;
+  double fu = 0.0, fv = 0.0;
+};
+
+// False when the texel is behind the camera or its footprint is off the image.
+bool ProjectTexel(const TextureView& view, const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                  const Eigen::Vector3d& v2, const AtlasTexel& texel, TexelInView* out) {
+  out->point_in_world = (1.0 - texel.b1 - texel.b2) * v0 + double(texel.b1) * v1 + double(texel.b2) * v2;
+  out->point_in_cam = view.cam_from_world * out->point_in_world;
+  if (!(out->point_in_cam.z() > 0.0)) return false;
+  const Eigen::Vector2d pixel = view.camera.ImgFromCam(out->point_in_cam);
+  const double u = pixel.x() - 0.5, v = pixel.y() - 0.5;
+  if (!(u > -1.0 && v > -1.0 && u < double(view.camera.width) && v < double(view.camera.height))) return false;
+  out->col0 = static_cast<int>(std::floor(u));
+  out->row0 = static_cast<int>(std::floor(v));
+  out->fu = u - out->col0;
+  out->fv = v - out->row0;
+  return true;
+}
+
+// The pixels whose depth sampling `faces` in `view` reads (with repeats).
+std::vector<cv::Point> SampledPixels(const Mesh& mesh, const TextureView& view, const std::vector<PassFace>& faces,
+                                     const TexelLayout& layout) {
+  std::vector<cv::Point> pixels;
+  for (const PassFace& pass_face : faces) {
+    const Mesh::Face& corners = mesh.faces[pass_face.face];
+    const auto [begin, end] = layout.face_ranges[pass_face.face];
+    for (std::size_t t = begin; t < end; ++t) {
+      TexelInView at;
+      if (!ProjectTexel(view, mesh.vertices[corners[0]], mesh.vertices[corners[1]], mesh.vertices[corners[2]],
+                        layout.texels[t], &at)) {
+        continue;
+      }
+      for (int dr = 0; dr <= 1; ++dr) {
+        for (int dc = 0; dc <= 1; ++dc) pixels.emplace_back(at.col0 + dc, at.row0 + dr);
+      }
+    }
+  }
+  return pixels;
+}
+
+// Samples `view` at the texels of `faces` into `samples`. `colour` and `confidence` (empty: every pixel
+// trusted) are the pixels of `window`; `depths` must have the pixels the texels' footprints read.
+void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_index, const ViewPixelDepths& depths,
                 const cv::Rect& window, const cv::Mat& colour, const cv::Mat& confidence, const std::vector<PassFace>& faces,
                 const TexelLayout& layout, std::vector<TexelSamples>& samples, std::vector<std::mutex>& locks) {
   const double focal = 0.5 * (view.camera.FocalLengthX() + view.camera.FocalLengthY());
@@ -150,26 +196,19 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
     const auto [begin, end] = layout.face_ranges[face];
     std::lock_guard<std::mutex> lock(locks[face % locks.size()]);
     for (std::size_t t = begin; t < end; ++t) {
-      const AtlasTexel& texel = layout.texels[t];
-      const Eigen::Vector3d point_in_world = (1.0 - texel.b1 - texel.b2) * v0 + double(texel.b1) * v1 + double(texel.b2) * v2;
-      const Eigen::Vector3d point_in_cam = view.cam_from_world * point_in_world;
-      if (!(point_in_cam.z() > 0.0)) continue;
-      const Eigen::Vector2d pixel = view.camera.ImgFromCam(point_in_cam);
-      const double u = pixel.x() - 0.5, v = pixel.y() - 0.5;
-      if (!(u > -1.0 && v > -1.0 && u < double(view.camera.width) && v < double(view.camera.height))) continue;
-      const int col0 = static_cast<int>(std::floor(u)), row0 = static_cast<int>(std::floor(v));
-      const double fu = u - col0, fv = v - row0;
+      TexelInView at;
+      if (!ProjectTexel(view, v0, v1, v2, layout.texels[t], &at)) continue;
+      const Eigen::Vector3d& point_in_cam = at.point_in_cam;
       Eigen::Vector3d colour_sum = Eigen::Vector3d::Zero();
       double confidence_sum = 0.0, weight_sum = 0.0;
       for (int dr = 0; dr <= 1; ++dr) {
         for (int dc = 0; dc <= 1; ++dc) {
-          const int col = col0 + dc, row = row0 + dr;
-          const int map_col = col - maps.origin.x, map_row = row - maps.origin.y;
-          if (map_col < 0 || map_row < 0 || map_col >= maps.depth.cols || map_row >= maps.depth.rows) continue;
+          const int col = at.col0 + dc, row = at.row0 + dr;
           const int window_col = col - window.x, window_row = row - window.y;
           if (window_col < 0 || window_row < 0 || window_col >= colour.cols || window_row >= colour.rows) continue;
-          const double w = (dc ? fu : 1.0 - fu) * (dr ? fv : 1.0 - fv);
-          const float depth = maps.depth.at<float>(map_row, map_col);
+          float depth = 0.0f;
+          if (!depths.At(col, row, &depth)) continue;
+          const double w = (dc ? at.fu : 1.0 - at.fu) * (dr ? at.fv : 1.0 - at.fv);
           if (w <= 0.0 || !(std::abs(depth - point_in_cam.z()) <= depth_tolerance * point_in_cam.z())) continue;
           const cv::Vec3f& value = colour.at<cv::Vec3f>(window_row, window_col);
           colour_sum += w * Eigen::Vector3d(value[0], value[1], value[2]);
@@ -183,7 +222,7 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
         }
       }
       if (weight_sum < 0.5) continue;  // mostly occluded or off the image
-      const double cos_angle = std::abs(normal.dot((centre_in_world - point_in_world).normalized()));
+      const double cos_angle = std::abs(normal.dot((centre_in_world - at.point_in_world).normalized()));
       const double resolution = (focal / point_in_cam.z()) * (focal / point_in_cam.z());
       TexelSample sample;
       sample.colour = (colour_sum / weight_sum).cast<float>();
@@ -193,6 +232,18 @@ void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_in
       samples[first_sample + (t - begin)].Offer(sample);
     }
   }
+}
+
+// Whether to cast only the pixels the texels of `faces` read instead of rendering `window`: when they
+// are a small part of it. A pixel cast alone costs about as much as kRenderedPerCast pixels rendered
+// adaptively (raycast_benchmark: a quarter of the pixels cast in packets, the rest filled).
+bool CastPixelsAlone(const TexelLayout& layout, const std::vector<PassFace>& faces, const cv::Rect& window) {
+  constexpr double kRenderedPerCast = 16.0;
+  std::size_t texels = 0;
+  for (const PassFace& pass_face : faces) {
+    texels += layout.face_ranges[pass_face.face].second - layout.face_ranges[pass_face.face].first;
+  }
+  return 4.0 * double(texels) * kRenderedPerCast < double(window.area());
 }
 
 // The charts of each pass over the views, at most `texels_per_pass` texels each, batched along the
@@ -232,6 +283,7 @@ void TexelFusionSummary::Add(const TexelFusionSummary& other) {
              : 0.0;
   num_passes += other.num_passes;
   views_read += other.views_read;
+  views_cast_by_pixel += other.views_cast_by_pixel;
   num_texels = texels;
   texels_without_samples += other.texels_without_samples;
   rejected_samples += other.rejected_samples;
@@ -286,6 +338,7 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     }
     std::vector<TexelSamples> samples(num_samples);
     std::atomic<std::size_t> views_outside{0};  // whose faces all project outside the image: not read
+    std::atomic<std::size_t> views_cast_by_pixel{0};
     std::optional<ProgressReporter> progress;
     if (options.show_progress) {
       progress.emplace(passes.size() > 1 ? options.progress_label + ", pass " + std::to_string(p + 1) + "/" +
@@ -295,7 +348,8 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     }
     ParallelForOnWorkers(used_views.size(), options.num_threads, [&](std::size_t i, int worker) {
       const std::size_t v = used_views[i];
-      // Only the rectangle the pass's faces project to is read, linearised and ray cast.
+      // Only the rectangle the pass's faces project to is read and linearised; it is ray cast, or only
+      // the pixels the texels read when they are few in it (seam points).
       const cv::Rect window = SampledWindow(mesh, views[v], faces_of_view[v]);
       if (window.empty()) {  // the faces project outside the image
         ++views_outside;
@@ -304,14 +358,22 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
       }
       const cv::Mat colour = LoadViewImage(source, views, v, window);
       const cv::Mat confidence = LoadViewConfidence(source, views, v, window);
-      GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
-      raycaster.Render(views[v], &maps, window);
-      SampleView(mesh, views[v], static_cast<std::uint32_t>(v), maps, window, colour, confidence, faces_of_view[v],
-                 layout, samples, locks);
+      if (CastPixelsAlone(layout, faces_of_view[v], window)) {
+        ++views_cast_by_pixel;
+        const ViewPixelDepths depths(raycaster, views[v], SampledPixels(mesh, views[v], faces_of_view[v], layout));
+        SampleView(mesh, views[v], static_cast<std::uint32_t>(v), depths, window, colour, confidence,
+                   faces_of_view[v], layout, samples, locks);
+      } else {
+        GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
+        raycaster.Render(views[v], &maps, window);
+        SampleView(mesh, views[v], static_cast<std::uint32_t>(v), ViewPixelDepths(maps), window, colour, confidence,
+                   faces_of_view[v], layout, samples, locks);
+      }
       if (progress) progress->Advance();
     });
     if (progress) progress->Finish();
     summary.views_read += used_views.size() - views_outside.load();
+    summary.views_cast_by_pixel += views_cast_by_pixel.load();
     std::size_t s = 0;
     for (const auto& [begin, end] : texel_ranges) {
       for (std::size_t t = begin; t < end; ++t, ++s) {

@@ -19,7 +19,8 @@
 // Memory: kSamplesPerTexel samples per texel for the texels of one pass; the atlas is done in as many
 // passes over the views as `memory_limit_bytes` needs. Each pass takes neighbouring charts (one part of
 // the surface), reads only the views that see them and ray casts only the rectangle of each view their
-// faces project to. Results do not depend on the passes.
+// faces project to, or, where its texels are few in that rectangle (seam points scattered over a whole
+// view), only the pixels they read (view_pixel_depths.h). Results do not depend on the passes.
 
 #include <cstdint>
 #include <string>
@@ -56,6 +57,7 @@ struct TexelFusionOptions {
 struct TexelFusionSummary {
   int num_passes = 0;
   std::size_t views_read = 0;  // images read, over all passes
+  std::size_t views_cast_by_pixel = 0;  // of those, cast only at the pixels their texels read
   std::size_t num_texels = 0;
   std::size_t texels_without_samples = 0;  // no view sees them: filled from their neighbours
   std::size_t rejected_samples = 0;

@@ -52,4 +52,9 @@ void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps, const cv
   scene_.Render(RaysFor(view.camera), view.cam_from_world, options, maps);
 }
 
+void ViewRaycaster::CastDepths(const TextureView& view, const std::vector<cv::Point>& pixels,
+                               std::vector<float>* depths) const {
+  scene_.CastDepths(RaysFor(view.camera), view.cam_from_world, pixels, depths);
+}
+
 }  // namespace lutex

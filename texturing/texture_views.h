@@ -67,6 +67,9 @@ class ViewRaycaster {
   // memory per view). One thread: views run in parallel.
   void Render(const TextureView& view, GeometryMaps* maps, const cv::Rect& window = cv::Rect()) const;
 
+  // Depth of each of `pixels` of `view` (RaycastScene::CastDepths), into `depths`. One thread.
+  void CastDepths(const TextureView& view, const std::vector<cv::Point>& pixels, std::vector<float>* depths) const;
+
  private:
   const CameraRays& RaysFor(const Camera& camera) const;
 

@@ -201,6 +201,42 @@ struct FacePlane {
   }
 };
 
+// Casts up to 16 pixels of `rays` from `centre` (the camera centre relative to the scene's origin) as one
+// packet, and calls write(col, row, hit) for each with what it hit (face -1: nothing).
+template <typename WriteHit>
+void CastPacket(RTCScene scene, const CameraRays& rays, const Eigen::Vector3f& centre,
+                const Eigen::Matrix3f& world_from_cam_rotation, const Eigen::Matrix3f& cam_from_world_rotation,
+                const std::array<std::pair<int, int>, 16>& pixels, int count, const WriteHit& write) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) RTCRayHit16 packet;
+  alignas(64) int valid[16];
+  for (int lane = 0; lane < 16; ++lane) {
+    const bool used = lane < count;
+    const Eigen::Vector3f direction_in_cam =
+        used ? rays.Direction(pixels[lane].first, pixels[lane].second) : Eigen::Vector3f::Constant(nan);
+    valid[lane] = used && direction_in_cam.allFinite() ? -1 : 0;
+    const Eigen::Vector3f direction =
+        valid[lane] ? Eigen::Vector3f(world_from_cam_rotation * direction_in_cam) : Eigen::Vector3f(0, 0, 1);
+    SetPacketRay(lane, centre, direction, &packet);
+  }
+  rtcIntersect16(valid, scene, &context, &packet);
+  for (int lane = 0; lane < count; ++lane) {
+    PixelHit hit;
+    if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID) {
+      hit.distance = packet.ray.tfar[lane];
+      hit.face = static_cast<int>(packet.hit.primID[lane]);
+      hit.b1 = packet.hit.u[lane];
+      hit.b2 = packet.hit.v[lane];
+      hit.unit_normal_in_cam =
+          (cam_from_world_rotation * Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]))
+              .normalized();
+    }
+    write(pixels[lane].first, pixels[lane].second, hit);
+  }
+}
+
 // Everything needed to fill the maps of one camera pose: the pose in float and double, the maps, and the
 // scene's triangles relative to the camera. Rendering is two passes (see RaycastScene::Render): cast the
 // samples, then fill the pixels between them from the triangles the samples hit, casting what cannot be
@@ -333,34 +369,8 @@ class PoseRenderer {
 
   // Casts up to 16 pixels as one packet and writes what they hit.
   void Cast(const std::array<std::pair<int, int>, 16>& pixels, int count) const {
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    alignas(64) RTCRayHit16 packet;
-    alignas(64) int valid[16];
-    for (int lane = 0; lane < 16; ++lane) {
-      const bool used = lane < count;
-      const Eigen::Vector3f direction_in_cam =
-          used ? rays_.Direction(pixels[lane].first, pixels[lane].second) : Eigen::Vector3f::Constant(nan);
-      valid[lane] = used && direction_in_cam.allFinite() ? -1 : 0;
-      const Eigen::Vector3f direction =
-          valid[lane] ? Eigen::Vector3f(world_from_cam_rotation_ * direction_in_cam) : Eigen::Vector3f(0, 0, 1);
-      SetPacketRay(lane, centre_, direction, &packet);
-    }
-    rtcIntersect16(valid, scene_, &context, &packet);
-    for (int lane = 0; lane < count; ++lane) {
-      PixelHit hit;
-      if (valid[lane] && packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID) {
-        hit.distance = packet.ray.tfar[lane];
-        hit.face = static_cast<int>(packet.hit.primID[lane]);
-        hit.b1 = packet.hit.u[lane];
-        hit.b2 = packet.hit.v[lane];
-        hit.unit_normal_in_cam =
-            (cam_from_world_rotation_ * Eigen::Vector3f(packet.hit.Ng_x[lane], packet.hit.Ng_y[lane], packet.hit.Ng_z[lane]))
-                .normalized();
-      }
-      Write(pixels[lane].first, pixels[lane].second, hit);
-    }
+    CastPacket(scene_, rays_, centre_, world_from_cam_rotation_, cam_from_world_rotation_, pixels, count,
+               [this](int col, int row, const PixelHit& hit) { Write(col, row, hit); });
   }
 
   // The triangle `face` prepared for this pose.
@@ -498,6 +508,37 @@ void RaycastScene::Render(const CameraRays& rays, const Rigid3d& cam_from_world,
   if (renderer.Empty()) return;
   renderer.CastSamples(options.adaptive ? 2 : 1);
   if (options.adaptive) renderer.FillBetweenSamples();
+}
+
+void RaycastScene::CastDepths(const CameraRays& rays, const Rigid3d& cam_from_world, const std::vector<cv::Point>& pixels,
+                              std::vector<float>* depths) const {
+  if (!cam_from_world.IsValid()) {
+    throw std::invalid_argument("pose for ray casting is not finite or its quaternion is not unit");
+  }
+  const Eigen::Matrix3f cam_from_world_rotation = cam_from_world.rotation.toRotationMatrix().cast<float>();
+  const Eigen::Matrix3f world_from_cam_rotation = cam_from_world_rotation.transpose();
+  const Eigen::Vector3f centre = (cam_from_world.TargetOriginInSource() - impl_->origin).cast<float>();
+  depths->assign(pixels.size(), std::numeric_limits<float>::quiet_NaN());
+  std::array<std::pair<int, int>, 16> packet;
+  std::array<std::size_t, 16> index_of_lane;
+  int count = 0;
+  const auto cast = [&] {
+    int lane = 0;
+    CastPacket(impl_->scene, rays, centre, world_from_cam_rotation, cam_from_world_rotation, packet, count,
+               [&](int col, int row, const PixelHit& hit) {
+                 if (hit.face >= 0) (*depths)[index_of_lane[lane]] = hit.distance * rays.Direction(col, row).z();
+                 ++lane;
+               });
+    count = 0;
+  };
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const cv::Point& pixel = pixels[i];
+    if (pixel.x < 0 || pixel.y < 0 || pixel.x >= rays.width() || pixel.y >= rays.height()) continue;
+    index_of_lane[count] = i;
+    packet[count++] = {pixel.x, pixel.y};
+    if (count == 16) cast();
+  }
+  if (count > 0) cast();
 }
 
 }  // namespace lutex

@@ -6,6 +6,7 @@
 // to float, so georeferenced meshes keep their precision.
 
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -41,6 +42,13 @@ class RaycastScene {
   // are released.
   void Render(const CameraRays& rays, const Rigid3d& cam_from_world, const GeometryMapsOptions& options,
               GeometryMaps* maps) const;
+
+  // Planar depth z in the camera frame (as GeometryMaps::depth) of each of `pixels` of the image taken by
+  // `rays.camera()` at `cam_from_world`, NaN where the ray hits nothing or the pixel is off the image.
+  // For a few pixels scattered over an image (seam points), where rendering their rectangle would
+  // render most of it: each pixel is cast (no adaptive fill), in packets of 16, on the calling thread.
+  void CastDepths(const CameraRays& rays, const Rigid3d& cam_from_world, const std::vector<cv::Point>& pixels,
+                  std::vector<float>* depths) const;
 
   // One ray in the world frame (direction need not be unit; the distance is in units of its length).
   RayHit Intersect(const Eigen::Vector3d& origin_in_world, const Eigen::Vector3d& direction_in_world) const;

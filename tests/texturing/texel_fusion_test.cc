@@ -376,6 +376,58 @@ TEST(FuseTexels, OccludedViewsGiveNothingAndOccludersNeverBleedIn) {
   }
 }
 
+// A few texels scattered over the views (as seam points are) are sampled through depths cast at their
+// pixels alone, not through a rendered window: they get the colours the same texels get in the whole
+// layout, occlusion by the box included.
+TEST(FuseTexels, FewScatteredTexelsGetTheColoursTheyGetInTheWholeLayout) {
+  const Eigen::Vector3f orange(0.6f, 0.2f, 0.1f);
+  Mesh mesh = Floor();
+  const std::size_t floor_faces = mesh.faces.size();
+  AppendMesh(MakeBoxMesh({-0.2, -0.2, 0.4}, {0.2, 0.2, 0.6}), &mesh);
+  const Shader floor_linear_box_white = [floor_faces](int face, const Eigen::Vector3d& p) {
+    return static_cast<std::size_t>(face) < floor_faces ? LinearAlbedo(p) : kWhite;
+  };
+  const Shader floor_orange_box_white = [floor_faces, orange](int face, const Eigen::Vector3d&) {
+    return static_cast<std::size_t>(face) < floor_faces ? orange : kWhite;
+  };
+  FusionScene scene(std::move(mesh), {Above(0.0, 0.0, 2.0), LookingAt({0.6, 0.0, 1.6}, {0.0, 0.0, 0.0}, 240)},
+                    {floor_linear_box_white, floor_orange_box_white});
+  const std::vector<std::uint32_t> view_of_face = scene.AllFaces(0);
+  scene.Layout(view_of_face);
+  std::vector<cv::Mat> whole_pages;
+  const TexelFusionSummary whole = scene.Fuse(view_of_face, {}, whole_pages);
+
+  // The middle texel of every third face, one chart.
+  TexelLayout scattered;
+  scattered.face_ranges.assign(scene.mesh_.faces.size(), {0, 0});
+  for (std::uint32_t f = 0; f < scene.mesh_.faces.size(); f += 3) {
+    const auto [begin, end] = scene.layout_.face_ranges[f];
+    if (begin == end) continue;
+    scattered.face_ranges[f] = {scattered.texels.size(), scattered.texels.size() + 1};
+    scattered.texels.push_back(scene.layout_.texels[(begin + end) / 2]);
+  }
+  scattered.chart_offsets = {0, scattered.texels.size()};
+  ASSERT_GT(scattered.texels.size(), 50u);
+  ASSERT_LT(scattered.texels.size(), 100u);
+  std::vector<cv::Mat> scattered_pages;
+  for (const cv::Mat& page : whole_pages) scattered_pages.emplace_back(page.size(), CV_32FC3, cv::Scalar::all(-1.0));
+  const TexelFusionSummary few = FuseTexels(scene.mesh_, scene.views_, scene.raycaster_, scene.source_,
+                                            scene.candidates_, view_of_face, scattered, {}, scattered_pages);
+  EXPECT_EQ(whole.views_cast_by_pixel, 0u);
+  EXPECT_EQ(few.views_cast_by_pixel, 2u);
+  std::size_t hidden_from_above = 0;
+  for (const AtlasTexel& texel : scattered.texels) {
+    const Eigen::Vector3f expected = TexelColour(whole_pages, texel), colour = TexelColour(scattered_pages, texel);
+    if (!expected.allFinite()) {
+      EXPECT_FALSE(colour.allFinite());
+      continue;
+    }
+    EXPECT_LT((colour - expected).cwiseAbs().maxCoeff(), 1e-6f) << "texel " << texel.x << ", " << texel.y;
+    hidden_from_above += (colour - orange).cwiseAbs().maxCoeff() < 1e-5f;
+  }
+  EXPECT_GT(hidden_from_above, 0u);  // some of them only the side view sees
+}
+
 TEST(FuseTexels, PassesUnderATightMemoryLimitGiveTheSameTexture) {
   const Shader albedo = [](int, const Eigen::Vector3d& p) { return LinearAlbedo(p); };
   FusionScene scene(Floor(), {Above(0.0, 0.0, 1.5), Above(0.2, 0.2, 1.5), Above(-0.2, 0.2, 1.5), Above(0.0, -0.2, 1.5)},

@@ -304,6 +304,41 @@ TEST(RaycastScene, AWindowRendersWhatTheWholeImageShowsThere) {
   EXPECT_TRUE(nothing.face_id.empty());
 }
 
+// Casting listed pixels alone gives the depth that casting every pixel gives them, NaN for misses and for
+// pixels off the image, in the order listed.
+TEST(RaycastScene, CastDepthsEqualCastingEveryPixel) {
+  const RaycastScene scene(TerrainWithBoulder());
+  const Rigid3d cam_from_world = LookingDownAtTheTerrain();
+  const CameraRays rays(DistortedCamera());
+  GeometryMapsOptions every_pixel;
+  every_pixel.adaptive = false;
+  const GeometryMaps maps = scene.Render(rays, cam_from_world, every_pixel);
+  std::vector<cv::Point> pixels;
+  for (int row = 119; row >= 0; row -= 3) {
+    for (int col = 0; col < 160; col += 7) pixels.emplace_back(col, row);
+  }
+  pixels.emplace_back(-1, 5);
+  pixels.emplace_back(160, 5);
+  pixels.emplace_back(3, 120);
+  std::vector<float> depths;
+  scene.CastDepths(rays, cam_from_world, pixels, &depths);
+  ASSERT_EQ(depths.size(), pixels.size());
+  int hits = 0, misses = 0;
+  for (std::size_t i = 0; i + 3 < pixels.size(); ++i) {
+    const float expected = maps.depth.at<float>(pixels[i].y, pixels[i].x);
+    if (std::isnan(expected)) {
+      ASSERT_TRUE(std::isnan(depths[i])) << pixels[i];
+      ++misses;
+    } else {
+      ASSERT_NEAR(depths[i], expected, 1e-6f * expected) << pixels[i];
+      ++hits;
+    }
+  }
+  EXPECT_GT(hits, 500);
+  EXPECT_GT(misses, 5);  // the view sees past the terrain's corners
+  for (std::size_t i = pixels.size() - 3; i < pixels.size(); ++i) EXPECT_TRUE(std::isnan(depths[i])) << pixels[i];
+}
+
 // Large (georeferenced) coordinates keep millimetre depth precision thanks to the local origin.
 TEST(RaycastScene, GeoreferencedCoordinatesKeepPrecision) {
   const Eigen::Vector3d offset(512345.0, 6012345.0, -1500.0);
