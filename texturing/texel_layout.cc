@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
 
 #include "lib/util/parallel_for.h"
 
@@ -78,26 +77,25 @@ std::vector<TexelOwner> FindTexelOwners(const TextureChart& chart, double gutter
 
 std::vector<AtlasTexel> RasterizeChart(const TextureChart& chart, const AtlasPlacement& placement, double gutter) {
   const std::vector<TexelOwner> owners = FindTexelOwners(chart, gutter);
-  std::vector<std::tuple<int, int, int>> order;  // (face index, row, col)
+  // Face by face, row-major within a face: a counting sort by face index (the scan is row-major).
+  std::vector<std::size_t> first_of_face(chart.faces.size() + 1, 0);
+  for (const TexelOwner& owner : owners) {
+    if (owner.face_index >= 0) ++first_of_face[static_cast<std::size_t>(owner.face_index) + 1];
+  }
+  for (std::size_t i = 0; i < chart.faces.size(); ++i) first_of_face[i + 1] += first_of_face[i];
+  std::vector<AtlasTexel> texels(first_of_face.back());
   for (int row = 0; row < chart.height; ++row) {
     for (int col = 0; col < chart.width; ++col) {
       const TexelOwner& owner = owners[static_cast<std::size_t>(row) * chart.width + col];
-      if (owner.face_index >= 0) order.emplace_back(owner.face_index, row, col);
+      if (owner.face_index < 0) continue;
+      AtlasTexel& texel = texels[first_of_face[static_cast<std::size_t>(owner.face_index)]++];
+      texel.face = chart.faces[static_cast<std::size_t>(owner.face_index)];
+      texel.page = static_cast<std::uint16_t>(placement.page);
+      texel.x = static_cast<std::uint16_t>(placement.x + col);
+      texel.y = static_cast<std::uint16_t>(placement.y + row);
+      texel.b1 = owner.b1;
+      texel.b2 = owner.b2;
     }
-  }
-  std::sort(order.begin(), order.end());
-  std::vector<AtlasTexel> texels;
-  texels.reserve(order.size());
-  for (const auto& [face_index, row, col] : order) {
-    const TexelOwner& owner = owners[static_cast<std::size_t>(row) * chart.width + col];
-    AtlasTexel texel;
-    texel.face = chart.faces[face_index];
-    texel.page = static_cast<std::uint16_t>(placement.page);
-    texel.x = static_cast<std::uint16_t>(placement.x + col);
-    texel.y = static_cast<std::uint16_t>(placement.y + row);
-    texel.b1 = owner.b1;
-    texel.b2 = owner.b2;
-    texels.push_back(texel);
   }
   return texels;
 }

@@ -46,7 +46,7 @@ int RunTilesCommand(int argc, char** argv) {
 void AddImageCacheOption(OptionParser& parser, TilesOptions* options) {
   parser.AddCustom("image-cache", std::to_string(options->picture_cache_bytes >> 20),
                    "MiB of decoded images kept for the next tiles: a view is read once per tile that sees it,\n"
-                   "      and neighbouring tiles see mostly the same views (192 MiB holds five 12 MP 8-bit\n"
+                   "      and neighbouring tiles see mostly the same views (384 MiB holds ten 12 MP 8-bit\n"
                    "      images; a 16-bit restored image takes twice as much). 0 = none: least memory, most\n"
                    "      decoding.",
                    [options](const std::string& text) {
