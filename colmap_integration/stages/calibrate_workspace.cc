@@ -594,7 +594,8 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
               << observations.correspondences.size() << " correspondence and " << observations.pure_water.size()
               << " pure-water observations";
     const FrustumLut reference = ReferenceLut(options, camera, calibration.grid, observations, summary);
-    CalibrationResult solved = Calibrate(observations, reference, calibration);
+    const FrustumLut& reached = summary->water_prior->backscatter_reached;
+    CalibrationResult solved = Calibrate(observations, reference, calibration, &reached);
     const bool fit_gains = !observations.correspondences.empty() &&
                            (options.exposure_gains == "fit" ||
                             (options.exposure_gains == "auto" && !observations.known_colors.empty()));
@@ -603,7 +604,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
       RecordFittedGains(gains, observations, dive, summary);
       DivideOutExposureGains(gains.gains, &observations);
       LogInfo() << "calibrating again with the exposure gains divided out";
-      solved = Calibrate(observations, reference, calibration);
+      solved = Calibrate(observations, reference, calibration, &reached);
     }
     return solved;
   };

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <ceres/ceres.h>
@@ -111,6 +112,7 @@ struct ChannelProblemInput {
   int gauge_node;  // node whose alpha is held (no known colours), or -1
   const FrustumLut& level_lut;  // grid of this level (values unused)
   const FrustumLut& level_reference;  // the weighting LUT on this level: the shape smoothness keeps
+  const FrustumLut* level_backscatter_reached;  // per node, the fraction of open water's backscatter, or null
   const SmoothnessWeights& smoothness;
   const CalibrationOptions& options;
 };
@@ -179,7 +181,8 @@ void AddCorrespondenceResiduals(const ChannelProblemInput& input, int channel, N
   }
 }
 
-// Pure water: beta at every slab along a pure-water pixel's ray stays below what the pixel saw (not in air).
+// Pure water: beta at every slab along a pure-water pixel's ray stays below what the pixel saw and, with
+// the water prior's fractions, above the fraction of it backscatter reaches at the slab (not in air).
 void AddPureWaterResiduals(const ChannelProblemInput& input, int channel, NodeValues* values, ceres::Problem* problem) {
   const auto block = [values](int node) { return (*values)[static_cast<std::size_t>(node)].data(); };
   const FrustumLutGrid& grid = input.level_lut.grid();
@@ -189,9 +192,16 @@ void AddPureWaterResiduals(const ChannelProblemInput& input, int channel, NodeVa
       std::vector<double> beta_weights(weights.weight.begin(), weights.weight.begin() + weights.count);
       std::vector<double*> blocks;
       for (int n = 0; n < weights.count; ++n) blocks.push_back(block(weights.node[n]));
-      problem->AddResidualBlock(PureWaterBoundResidual::Create(std::move(beta_weights), observation.intensity[channel],
-                                                              input.options.pure_water_weight * observation.weight),
-                               nullptr, blocks);
+      const double reached =
+          input.level_backscatter_reached == nullptr
+              ? 0.0
+              : input.level_backscatter_reached->Lookup(observation.pixel.x(), observation.pixel.y(), grid.SlabDepth(k))
+                    .beta[channel];
+      problem->AddResidualBlock(
+          PureWaterBoundResidual::Create(std::move(beta_weights), observation.intensity[channel],
+                                         input.options.pure_water_weight * observation.weight, reached,
+                                         input.options.pure_water_reached_weight * observation.weight),
+          nullptr, blocks);
     }
   }
 }
@@ -302,7 +312,8 @@ void CalibrationOptions::Check() const {
   for (const auto& level : levels) {
     if (level.first < 1 || level.second < 1) throw std::invalid_argument("calibration levels need nx, ny >= 1");
   }
-  if (!(smoothness_scale >= 0.0) || !(alpha_smoothness_factor > 0.0) || !(pure_water_weight >= 0.0)) {
+  if (!(smoothness_scale >= 0.0) || !(alpha_smoothness_factor > 0.0) || !(pure_water_weight >= 0.0) ||
+      !(pure_water_reached_weight >= 0.0)) {
     throw std::invalid_argument("calibration weights must not be negative");
   }
   if (max_iterations < 1) throw std::invalid_argument("max_iterations must be at least 1");
@@ -310,9 +321,12 @@ void CalibrationOptions::Check() const {
 }
 
 CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut& reference,
-                            const CalibrationOptions& options) {
+                            const CalibrationOptions& options, const FrustumLut* backscatter_reached) {
   options.Check();
   if (!(reference.grid() == options.grid)) throw std::invalid_argument("the reference LUT must be on the calibration grid");
+  if (backscatter_reached != nullptr && !(backscatter_reached->grid() == options.grid)) {
+    throw std::invalid_argument("the backscatter fractions must be on the calibration grid");
+  }
   const bool self_calibrated = observations.known_colors.empty();
   if (self_calibrated && observations.correspondences.empty()) {
     throw std::invalid_argument("calibration needs known-colour observations or correspondences");
@@ -349,6 +363,8 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
       for (int n = 0; n < grid.NumNodes(); ++n) level_lut.node(n).beta.setZero();
     }
     const FrustumLut level_reference = scaled_reference.Resampled(grid);
+    const std::optional<FrustumLut> level_reached =
+        backscatter_reached == nullptr ? std::nullopt : std::optional<FrustumLut>(backscatter_reached->Resampled(grid));
     SmoothnessWeights smoothness =
         ComputeSmoothnessWeights(level_reference, options.smoothness_scale, options.alpha_smoothness_factor);
     ScaleToDataIntensity(data_intensity / data_intensity.maxCoeff(), &smoothness);
@@ -357,7 +373,8 @@ CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut
     level_summary.ny = grid.ny;
     const int gauge_node = self_calibrated ? GaugeNode(level_lut, observations) : -1;
     const ChannelProblemInput input{observations, known_color_weights, correspondence_weights, gauge_node,
-                                    level_lut, level_reference, smoothness, options};
+                                    level_lut, level_reference, level_reached ? &*level_reached : nullptr,
+                                    smoothness, options};
     ParallelFor(3, options.num_threads, [&](std::size_t channel) {
       const int c = static_cast<int>(channel);
       NodeValues values(static_cast<std::size_t>(grid.NumNodes()));

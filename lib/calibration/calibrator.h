@@ -2,7 +2,7 @@
 
 // Fitting a FrustumLut to observations (paper Sec. 2.2-2.4): known colours, correspondences between views
 // of the same surface, smoothness between the six neighbours of every node, pure-water upper bounds on
-// beta, and positivity of alpha and beta. Solved by
+// beta (and lower ones from the water prior, below), and positivity of alpha and beta. Solved by
 // Ceres (Levenberg-Marquardt, sparse Cholesky) for the three channels independently and in parallel,
 // coarse to fine: each level's nx x ny cells are solved starting from the previous level resampled
 // (corner-aligned grids nest exactly, see frustum_lut.h). In air, beta is held at 0.
@@ -21,6 +21,15 @@
 // channel keeps the paper's weights. (Scaling by I_c itself fixed the blue too, but made a dim dive's
 // smoothness 10x weaker than the paper's everywhere: a chessboard-only LUT then extrapolated worse,
 // 4.1 -> 7.2 pp.)
+//
+// Pure water departs from the paper's one-sided bound beta <= I_pw when the water prior is given: a
+// pure-water pixel sees the backscatter along its ray to infinity, and the prior says what fraction f of
+// it backscatter reaches at each range (in turbid water nearly all of it beyond a metre or two), so
+// beta >= f I_pw as well, weighted lower. Without it, where the known colours cannot tell alpha from beta
+// (far, dim, turbid: two board albedos whose difference is a tenth of the backscatter), the level of beta
+// was free, smoothness kept only its shape, and it settled low: on the turbid Blender boards at 55 % of
+// the pure-water intensity at 2 m, which left the restored seafloor's image edges 17-21 pp too bright in
+// red.
 //
 // Correspondences alone are satisfied by alpha = 0 and fix alpha only up to a factor per channel. The
 // paper normalises sum(alpha) = 1; that one residual would touch every node and make the sparse normal
@@ -55,6 +64,10 @@ struct CalibrationOptions {
   double alpha_smoothness_factor = 0.7;
   // Weight of a pure-water bound violation, per unit of excess beta.
   double pure_water_weight = 100.0;
+  // Weight, per unit of beta, of falling short of the fraction of a pure-water pixel's intensity that the
+  // water prior says backscatter reaches at a slab's range (Calibrate's `backscatter_reached`). Lower than
+  // the bound's: the bound is physics, the fraction is a fitted model's.
+  double pure_water_reached_weight = 30.0;
   // Factor on the paper's correspondence weights.
   double correspondence_weight = 1.0;
   // Without known colours: the mean albedo, per channel, of the correspondences' surfaces that sets the
@@ -113,9 +126,12 @@ struct CalibrationResult {
 };
 
 // `reference` is the weighting LUT on options.grid (a point light at the camera in the expected water,
-// any intensity scale: it is rescaled to the data). Needs known colours or correspondences (then with
-// options.grey_world_albedo).
+// any intensity scale: it is rescaled to the data). `backscatter_reached`, when given (on options.grid,
+// the water prior's WaterPrior::backscatter_reached), also bounds beta from below along pure-water rays:
+// without it, nothing but the known colours sets the level of beta, and where they cannot tell alpha from
+// beta (far, dim, turbid) smoothness keeps only beta's shape. Needs known colours or correspondences (then
+// with options.grey_world_albedo).
 CalibrationResult Calibrate(const ObservationSet& observations, const FrustumLut& reference,
-                            const CalibrationOptions& options);
+                            const CalibrationOptions& options, const FrustumLut* backscatter_reached = nullptr);
 
 }  // namespace lutex

@@ -28,9 +28,11 @@ ceres::CostFunction* SmoothnessResidual::Create(int component, double weight, do
       new SmoothnessResidual{component, weight, scale_a, scale_b});
 }
 
-ceres::CostFunction* PureWaterBoundResidual::Create(std::vector<double> beta_weights, double intensity, double weight) {
+ceres::CostFunction* PureWaterBoundResidual::Create(std::vector<double> beta_weights, double intensity, double weight,
+                                                    double reached_fraction, double short_weight) {
   const std::size_t count = beta_weights.size();
-  return MakeDynamic(new PureWaterBoundResidual{std::move(beta_weights), intensity, weight}, count);
+  return MakeDynamic(
+      new PureWaterBoundResidual{std::move(beta_weights), intensity, weight, reached_fraction, short_weight}, count);
 }
 
 ceres::CostFunction* CorrespondenceResidual::Create(std::vector<std::array<double, 4>> coefficients, double cos_theta_1,

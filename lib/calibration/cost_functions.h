@@ -51,22 +51,31 @@ struct SmoothnessResidual {
   static ceres::CostFunction* Create(int component, double weight, double scale_a = 1.0, double scale_b = 1.0);
 };
 
-// Pure water, paper Eq. 9, as a one-sided penalty: w * max(0, sum_i b_i beta_i - I_pw).
+// Pure water, paper Eq. 9, widened to a band. Above: w * (beta - I_pw) where beta exceeds I_pw (the
+// paper's bound: backscatter up to a surface is less than to infinity). Below: w_short * (f I_pw - beta)
+// where beta falls short of the fraction f of it that backscatter reaches at the slab's range (f from the
+// water prior; f = 0 or w_short = 0: the paper's one-sided bound). beta = sum_i b_i beta_i.
 struct PureWaterBoundResidual {
   std::vector<double> beta_weights;
   double intensity;
   double weight;
+  double reached_fraction = 0.0;
+  double short_weight = 0.0;
 
   template <typename T>
   bool operator()(T const* const* nodes, T* residual) const {
     T beta = T(0.0);
     for (std::size_t i = 0; i < beta_weights.size(); ++i) beta += beta_weights[i] * nodes[i][1];
     const T excess = beta - T(intensity);
-    residual[0] = excess > T(0.0) ? T(weight) * excess : T(0.0);
+    const T shortfall = T(reached_fraction * intensity) - beta;
+    residual[0] = excess > T(0.0)      ? T(weight) * excess
+                  : shortfall > T(0.0) ? T(short_weight) * shortfall
+                                       : T(0.0);
     return true;
   }
 
-  static ceres::CostFunction* Create(std::vector<double> beta_weights, double intensity, double weight);
+  static ceres::CostFunction* Create(std::vector<double> beta_weights, double intensity, double weight,
+                                     double reached_fraction = 0.0, double short_weight = 0.0);
 };
 
 // Correspondence (observations.h), one channel, over the union of the two views' nodes (Ceres takes a

@@ -476,6 +476,16 @@ WaterPrior FitWaterPrior(const ObservationSet& observations, const LightRig& rig
     prior.lut.node(n).alpha = signal.node(n).alpha.cwiseProduct(prior.signal_scale);
     prior.lut.node(n).beta = backscatter.node(n).beta.cwiseProduct(prior.backscatter_scale);
   }
+  prior.backscatter_reached = FrustumLut(grid);
+  if (!prior.in_air) {
+    const FrustumLut open_water = renderer.Render(best.backscatter, true);
+    for (int n = 0; n < grid.NumNodes(); ++n) {
+      const Eigen::Vector3d near = backscatter.node(n).beta, far = open_water.node(n).beta;
+      for (int c = 0; c < 3; ++c) {
+        prior.backscatter_reached.node(n).beta[c] = far[c] > 0.0 ? std::clamp(near[c] / far[c], 0.0, 1.0) : 0.0;
+      }
+    }
+  }
   return prior;
 }
 

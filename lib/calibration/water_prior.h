@@ -72,6 +72,9 @@ struct WaterPrior {
   Eigen::Vector3d relative_rms = Eigen::Vector3d::Zero();
   // The prior on the calibration grid, in the images' intensity units.
   FrustumLut lut;
+  // Per node and channel (in beta; alpha is 0), the fraction of the open water's backscatter along the
+  // node's ray that the model's backscatter reaches at the node's range (in [0, 1]).
+  FrustumLut backscatter_reached;
 };
 
 // Fits the model above. `rig` is what shading assumes (lib/model/shading.h). Throws std::invalid_argument

@@ -59,6 +59,23 @@ TEST(CostFunctions, PureWaterBoundIsOneSided) {
   ExpectGradientsAgree(*cost, {{1.0, 0.3}, {1.0, 0.25}});
 }
 
+// The band: with the fraction reached 0.6 and its weight 3, no penalty between 0.06 and 0.1, linear
+// with weight 3 below 0.06 and with weight 10 above 0.1.
+TEST(CostFunctions, PureWaterBandPenalisesBetaBelowTheFractionReachedWithItsOwnWeight) {
+  const std::unique_ptr<ceres::CostFunction> cost(PureWaterBoundResidual::Create({0.5, 0.5}, 0.1, 10.0, 0.6, 3.0));
+  const auto evaluate = [&](double beta) {
+    const std::array<double, 2> node{1.0, beta};
+    const double* nodes[] = {node.data(), node.data()};
+    double residual = 1e9;
+    EXPECT_TRUE(cost->Evaluate(nodes, &residual, nullptr));
+    return residual;
+  };
+  EXPECT_EQ(evaluate(0.08), 0.0);
+  EXPECT_NEAR(evaluate(0.02), 3.0 * (0.06 - 0.02), 1e-15);
+  EXPECT_NEAR(evaluate(0.2), 10.0 * (0.2 - 0.1), 1e-15);
+  ExpectGradientsAgree(*cost, {{1.0, 0.03}, {1.0, 0.01}});
+}
+
 // Albedo 0.4 seen by view 1 (alpha 0.8, beta 0.1, cos 0.5 -> I1 = 0.26) and view 2 (alpha 0.3, beta 0.05,
 // cos 1 -> I2 = 0.17), view 1 on node a only, view 2 half on a and half on b: the residual is 0 at the
 // truth, and 0 too at the trivial solutions alpha = 0 and beta = I (why the calibration needs a gauge and

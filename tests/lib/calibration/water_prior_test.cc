@@ -103,6 +103,17 @@ TEST(WaterPrior, RecoversATurbidWaterFromTwoKnownColoursWithTheRigGiven) {
     EXPECT_LT(((b - a).array() / a.array()).abs().maxCoeff(), 0.1) << point.transpose();
   });
   EXPECT_LT(prior.relative_rms.maxCoeff(), 0.02);
+  // The fraction of the open water's backscatter reached at each range (what the calibration bounds beta
+  // with along pure-water rays): the truth's, beta over the backscatter to the simulator's pure-water range.
+  const Simulator open_water(Mesh(), rig, truth.water, SurfaceAlbedo::Constant(Eigen::Vector3d::Ones()));
+  ForEachSamplePoint(truth, [&](const Eigen::Vector2d& pixel, const Eigen::Vector3d& point) {
+    const Eigen::Vector3d to_infinity =
+        open_water.Backscatter(truth.camera.CamFromImg(pixel).normalized(), SimulatorOptions().max_range);
+    const Eigen::Vector3d expected = truth.lut.Lookup(pixel.x(), pixel.y(), point.z()).beta.cwiseQuotient(to_infinity);
+    const Eigen::Vector3d reached = prior.backscatter_reached.Lookup(pixel.x(), pixel.y(), point.z()).beta;
+    EXPECT_LT((reached - expected).cwiseAbs().maxCoeff(), 0.05) << point.transpose();
+    EXPECT_LE(reached.maxCoeff(), 1.0);
+  });
 }
 
 TEST(WaterPrior, FindsThePairOfLightsBesideTheCameraWhenTheRigIsAGuess) {
