@@ -301,6 +301,7 @@ void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationR
   const RestoredObservationStats& restored = summary.restored_observations;
   json["restored_observations"] = {
       {"count", restored.count},
+      {"judged_fraction", {restored.judged_fraction.x(), restored.judged_fraction.y(), restored.judged_fraction.z()}},
       {"implausible_fraction", {restored.implausible_fraction.x(), restored.implausible_fraction.y(),
                                 restored.implausible_fraction.z()}},
       {"median_albedo", {restored.median_albedo.x(), restored.median_albedo.y(), restored.median_albedo.z()}}};
@@ -411,10 +412,8 @@ WaterPriorOptions WaterPriorOptionsOf(const CalibrateOptions& options) {
 // (lib/calibration/water_prior.h), starting from the named water, or in air the rig's light alone.
 FrustumLut ReferenceLut(const CalibrateOptions& options, const Camera& camera, const FrustumLutGrid& grid,
                         const ObservationSet& observations, CalibrateSummary* summary) {
-  WaterPrior prior = FitWaterPrior(observations, ShadingRig(options), camera, grid, WaterPriorOptionsOf(options));
-  FrustumLut lut = std::move(prior.lut);
-  summary->water_prior = std::move(prior);
-  return lut;
+  summary->water_prior = FitWaterPrior(observations, ShadingRig(options), camera, grid, WaterPriorOptionsOf(options));
+  return summary->water_prior->lut;
 }
 
 // Divides out of every observation its image's EXIF exposure (t * ISO / N^2 over the factors every
@@ -621,7 +620,8 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   }
   for (const std::string& warning : summary.warnings) LogWarning() << warning;
 
-  summary.restored_observations = RestoreObservations(result.lut, observations);
+  summary.restored_observations =
+      RestoreObservations(result.lut, observations, summary.water_prior ? &summary.water_prior->lut : nullptr);
   CheckSolveIsPlausible(summary.restored_observations);
   summary.lut = options.output.empty() ? dive.workspace().LutPath() : options.output;
   summary.calibration = result.summary;
@@ -674,7 +674,10 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << std::setprecision(1) << c.seconds << " s\n"
             << "  observations restored with the LUT: median albedo " << std::setprecision(3)
             << summary.restored_observations.median_albedo.x() << " " << summary.restored_observations.median_albedo.y()
-            << " " << summary.restored_observations.median_albedo.z() << ", outside [-0.25, 1.5]: " << std::setprecision(1)
+            << " " << summary.restored_observations.median_albedo.z() << "; of those whose signal can pin their albedo ("
+            << std::setprecision(0) << 100 * summary.restored_observations.judged_fraction.x() << " "
+            << 100 * summary.restored_observations.judged_fraction.y() << " "
+            << 100 * summary.restored_observations.judged_fraction.z() << " %), outside [-0.25, 1.5]: " << std::setprecision(1)
             << 100 * summary.restored_observations.implausible_fraction.x() << " "
             << 100 * summary.restored_observations.implausible_fraction.y() << " "
             << 100 * summary.restored_observations.implausible_fraction.z() << " %\n"

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,17 +17,26 @@ namespace {
 
 constexpr double kLowestPlausible = -0.25;
 constexpr double kHighestPlausible = 1.5;
+// Below this share of its intensity, an observation's signal cannot pin its albedo (header).
+constexpr double kJudgedSignalFraction = 0.05;
 
 }  // namespace
 
-RestoredObservationStats RestoreObservations(const FrustumLut& lut, const ObservationSet& observations) {
-  std::array<std::vector<double>, 3> albedos;
+RestoredObservationStats RestoreObservations(const FrustumLut& lut, const ObservationSet& observations,
+                                             const FrustumLut* prior) {
+  std::array<std::vector<double>, 3> albedos, judged;
   // As restoration does it; alpha = 0 gives an infinite or undefined albedo, which counts as implausible.
   const auto restore = [&](const Eigen::Vector2d& pixel, const Eigen::Vector3d& point_in_cam,
                            const Eigen::Vector3d& intensity, double cos_theta) {
     const LutNode node = lut.Lookup(pixel.x(), pixel.y(), point_in_cam.z());
     const Eigen::Vector3d albedo = RestoreAlbedo(node.alpha, node.beta, cos_theta, intensity);
-    for (int c = 0; c < 3; ++c) albedos[c].push_back(albedo[c]);
+    const Eigen::Vector3d signal =
+        prior == nullptr ? Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity())
+                         : Eigen::Vector3d(prior->Lookup(pixel.x(), pixel.y(), point_in_cam.z()).alpha * cos_theta);
+    for (int c = 0; c < 3; ++c) {
+      albedos[c].push_back(albedo[c]);
+      if (signal[c] >= kJudgedSignalFraction * intensity[c]) judged[c].push_back(albedo[c]);
+    }
   };
   for (const KnownColorObservation& o : observations.known_colors) restore(o.pixel, o.point_in_cam, o.intensity, o.cos_theta);
   for (const CorrespondenceObservation& o : observations.correspondences) {
@@ -37,13 +48,16 @@ RestoredObservationStats RestoreObservations(const FrustumLut& lut, const Observ
   stats.count = albedos[0].size();
   if (stats.count == 0) return stats;
   for (int c = 0; c < 3; ++c) {
-    std::vector<double>& values = albedos[c];
+    const std::vector<double>& values = judged[c];
     const auto implausible = std::count_if(values.begin(), values.end(), [](double rho) {
       return !(rho >= kLowestPlausible && rho <= kHighestPlausible);
     });
-    stats.implausible_fraction[c] = static_cast<double>(implausible) / static_cast<double>(values.size());
-    std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2), values.end());
-    stats.median_albedo[c] = values[values.size() / 2];
+    stats.judged_fraction[c] = static_cast<double>(values.size()) / static_cast<double>(stats.count);
+    stats.implausible_fraction[c] =
+        values.empty() ? 0.0 : static_cast<double>(implausible) / static_cast<double>(values.size());
+    std::vector<double>& all = albedos[c];
+    std::nth_element(all.begin(), all.begin() + static_cast<long>(all.size() / 2), all.end());
+    stats.median_albedo[c] = all[all.size() / 2];
   }
   return stats;
 }
@@ -53,9 +67,12 @@ void CheckSolveIsPlausible(const RestoredObservationStats& stats, double max_imp
     if (stats.implausible_fraction[c] <= max_implausible_fraction) continue;
     char text[320];
     std::snprintf(text, sizeof(text),
-                  "the calibration diverged: restored with the fitted LUT, %.0f %% of the %zu observations come out "
-                  "at an albedo outside [%.2f, %.2f] in the %s channel (median %.3g); no LUT was written",
-                  100.0 * stats.implausible_fraction[c], stats.count, kLowestPlausible, kHighestPlausible,
+                  "the calibration diverged: restored with the fitted LUT, %.0f %% of the %zu observations whose "
+                  "signal can pin their albedo come out at an albedo outside [%.2f, %.2f] in the %s channel "
+                  "(median %.3g); no LUT was written",
+                  100.0 * stats.implausible_fraction[c],
+                  static_cast<std::size_t>(std::lround(stats.judged_fraction[c] * static_cast<double>(stats.count))),
+                  kLowestPlausible, kHighestPlausible,
                   c == 0 ? "red" : c == 1 ? "green" : "blue", stats.median_albedo[c]);
     throw std::runtime_error(text);
   }

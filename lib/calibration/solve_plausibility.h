@@ -9,6 +9,15 @@
 //
 // "Implausible" is an albedo outside [-0.25, 1.5]. The bounds are physical: albedo lies in [0, 1], and
 // the margins absorb noise, dark pixels and slight over-exposure. They are not tuned to any data set.
+//
+// Only observations whose albedo the data can pin are judged. Where the signal of a white surface,
+// alpha cos_theta, is below 5 % of what the pixel recorded (far, turbid, outside the beams: the rest is
+// backscatter), a 1 % error of beta alone moves the albedo by more than 0.2, so a sound LUT restores such
+// an observation outside the bounds as readily as a diverged one. alpha there is the water prior's
+// (lib/calibration/water_prior.h): four numbers per channel fitted to all the data, which cannot run to 0
+// where data are thin as the free LUT's nodes can. Measured: the simulated harbour dive of the water and
+// rig sweep (attenuation 1.4-1.6 per m, boards to 3.5 m) has 24 % of its red board observations outside
+// the bounds with beta at the truth's level, nearly all of them below 5 %.
 
 #include <cstddef>
 
@@ -21,15 +30,21 @@ namespace lutex {
 
 struct RestoredObservationStats {
   std::size_t count = 0;  // surface observations restored (a correspondence counts twice)
-  // Per channel: the fraction restored outside [-0.25, 1.5], and the median restored albedo.
+  // Per channel: the fraction of the observations judged (their signal above 5 % of their intensity), the
+  // fraction of those restored outside [-0.25, 1.5], and the median restored albedo of all.
+  Eigen::Vector3d judged_fraction = Eigen::Vector3d::Ones();
   Eigen::Vector3d implausible_fraction = Eigen::Vector3d::Zero();
   Eigen::Vector3d median_albedo = Eigen::Vector3d::Zero();
 };
 
-RestoredObservationStats RestoreObservations(const FrustumLut& lut, const ObservationSet& observations);
+// Restores every surface observation with `lut`. With `prior` (the water prior's LUT, in the images'
+// intensity units) only the observations whose signal it puts above 5 % of their intensity are judged;
+// without, all are.
+RestoredObservationStats RestoreObservations(const FrustumLut& lut, const ObservationSet& observations,
+                                             const FrustumLut* prior = nullptr);
 
-// Throws std::runtime_error when, in any channel, more than `max_implausible_fraction` of the observations
-// restore to implausible albedos, naming the channel, the fraction and the median.
+// Throws std::runtime_error when, in any channel, more than `max_implausible_fraction` of the judged
+// observations restore to implausible albedos, naming the channel, the fraction and the median.
 void CheckSolveIsPlausible(const RestoredObservationStats& stats, double max_implausible_fraction = 0.2);
 
 }  // namespace lutex

@@ -80,5 +80,30 @@ TEST(SolvePlausibility, ADivergedSolveIsRefusedNamingTheChannel) {
   EXPECT_NO_THROW(CheckSolveIsPlausible(few));
 }
 
+// Where backscatter swamps the signal (blue: alpha cos_theta below 1 under a backscatter of 100), 10 % too
+// little beta restores every observation far outside the bounds, but the data could not have pinned it:
+// with the water prior (here the truth) saying so, those observations are not judged. A diverged alpha
+// where the prior sees signal is still refused.
+TEST(SolvePlausibility, ObservationsWhoseSignalIsBelowFivePercentOfTheirIntensityAreNotJudged) {
+  const Eigen::Vector3d alpha(0.8, 0.5, 0.3), beta(0.01, 0.02, 100.0);
+  const FrustumLut truth = ConstantLut(alpha, beta);
+  ObservationSet observations = Observed(truth);
+  observations.correspondences.clear();  // their intensities are not rendered with `truth`
+  const FrustumLut low_blue_beta = ConstantLut(alpha, Eigen::Vector3d(0.01, 0.02, 90.0));
+  const RestoredObservationStats unjudged = RestoreObservations(low_blue_beta, observations);
+  EXPECT_GT(unjudged.implausible_fraction.z(), 0.9);
+  EXPECT_THROW(CheckSolveIsPlausible(unjudged), std::runtime_error);
+  const RestoredObservationStats judged = RestoreObservations(low_blue_beta, observations, &truth);
+  EXPECT_EQ(judged.judged_fraction.z(), 0.0);
+  EXPECT_EQ(judged.judged_fraction.x(), 1.0);
+  EXPECT_EQ(judged.implausible_fraction, Eigen::Vector3d::Zero());
+  EXPECT_NO_THROW(CheckSolveIsPlausible(judged));
+
+  const FrustumLut tiny_red_alpha = ConstantLut(Eigen::Vector3d(1e-4, 0.5, 0.3), beta);
+  const RestoredObservationStats diverged = RestoreObservations(tiny_red_alpha, observations, &truth);
+  EXPECT_GT(diverged.implausible_fraction.x(), 0.9);
+  EXPECT_THROW(CheckSolveIsPlausible(diverged), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace lutex
