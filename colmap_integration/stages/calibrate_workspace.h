@@ -121,7 +121,7 @@ struct CalibrateSummary {
   AlbedoSpan albedo_span;
   std::vector<std::string> warnings;
   // The water (or in air the light alone) fitted under the LUT (lib/calibration/water_prior.h); its lut is
-  // moved out.
+  // the calibration's reference and tells the divergence check where the signal can pin an albedo.
   std::optional<WaterPrior> water_prior;
   // The exposure the LUT is for: EXIF factors and reference, and the gains fitted per workspace image.
   ExposureRecord exposure;

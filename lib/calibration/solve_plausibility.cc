@@ -35,7 +35,8 @@ RestoredObservationStats RestoreObservations(const FrustumLut& lut, const Observ
                          : Eigen::Vector3d(prior->Lookup(pixel.x(), pixel.y(), point_in_cam.z()).alpha * cos_theta);
     for (int c = 0; c < 3; ++c) {
       albedos[c].push_back(albedo[c]);
-      if (signal[c] >= kJudgedSignalFraction * intensity[c]) judged[c].push_back(albedo[c]);
+      const bool starved = signal[c] > 0.0 && signal[c] < kJudgedSignalFraction * intensity[c];
+      if (!starved) judged[c].push_back(albedo[c]);
     }
   };
   for (const KnownColorObservation& o : observations.known_colors) restore(o.pixel, o.point_in_cam, o.intensity, o.cos_theta);
@@ -69,7 +70,7 @@ void CheckSolveIsPlausible(const RestoredObservationStats& stats, double max_imp
     std::snprintf(text, sizeof(text),
                   "the calibration diverged: restored with the fitted LUT, %.0f %% of the %zu observations whose "
                   "signal can pin their albedo come out at an albedo outside [%.2f, %.2f] in the %s channel "
-                  "(median %.3g); no LUT was written",
+                  "(median of all %.3g); no LUT was written",
                   100.0 * stats.implausible_fraction[c],
                   static_cast<std::size_t>(std::lround(stats.judged_fraction[c] * static_cast<double>(stats.count))),
                   kLowestPlausible, kHighestPlausible,

@@ -12,12 +12,13 @@
 //
 // Only observations whose albedo the data can pin are judged. Where the signal of a white surface,
 // alpha cos_theta, is below 5 % of what the pixel recorded (far, turbid, outside the beams: the rest is
-// backscatter), a 1 % error of beta alone moves the albedo by more than 0.2, so a sound LUT restores such
-// an observation outside the bounds as readily as a diverged one. alpha there is the water prior's
-// (lib/calibration/water_prior.h): four numbers per channel fitted to all the data, which cannot run to 0
-// where data are thin as the free LUT's nodes can. Measured: the simulated harbour dive of the water and
-// rig sweep (attenuation 1.4-1.6 per m, boards to 3.5 m) has 24 % of its red board observations outside
-// the bounds with beta at the truth's level, nearly all of them below 5 %.
+// backscatter), a 1 % error of beta alone moves the albedo by about 0.2, so a sound LUT restores such an
+// observation outside the bounds as readily as a diverged one. alpha there is the water prior's
+// (lib/calibration/water_prior.h): four numbers per channel fitted to all the data, which do not run to 0
+// node by node where data are thin as the free LUT's nodes can. Where the prior's alpha is 0 (its fit
+// explained a channel by backscatter alone) it says nothing, and the observation is judged. Measured: the
+// simulated harbour dive of the water and rig sweep (attenuation 1.4-1.6 per m, boards to 3.5 m) had 24 %
+// of its red board observations outside the bounds with beta at the truth's level; of those judged, 11 %.
 
 #include <cstddef>
 
@@ -38,8 +39,8 @@ struct RestoredObservationStats {
 };
 
 // Restores every surface observation with `lut`. With `prior` (the water prior's LUT, in the images'
-// intensity units) only the observations whose signal it puts above 5 % of their intensity are judged;
-// without, all are.
+// intensity units) the observations whose signal it puts above 0 but below 5 % of their intensity are
+// not judged; without, all are.
 RestoredObservationStats RestoreObservations(const FrustumLut& lut, const ObservationSet& observations,
                                              const FrustumLut* prior = nullptr);
 

@@ -246,6 +246,16 @@ TEST_F(Calibrator, PureWaterAndTheFractionBackscatterReachesSetBetaWhereOneColou
   EXPECT_LT(banded, 0.45);
   EXPECT_LT(banded, 0.5 * bound_only);
 
+  // Without pure water the fractions bound nothing.
+  ObservationSet boards_only = observations;
+  boards_only.pure_water.clear();
+  const FrustumLut without = Calibrate(boards_only, reference, options).lut;
+  const FrustumLut with_fractions = Calibrate(boards_only, reference, options, &reached).lut;
+  for (int n = 0; n < options.grid.NumNodes(); ++n) {
+    ASSERT_EQ(with_fractions.node(n).alpha, without.node(n).alpha);
+    ASSERT_EQ(with_fractions.node(n).beta, without.node(n).beta);
+  }
+
   FrustumLut elsewhere(testing::LutGrid(4, 3, 6, 0.7, 2.8, kWidth, kHeight));
   EXPECT_THROW(Calibrate(observations, reference, options, &elsewhere), std::invalid_argument);
 }

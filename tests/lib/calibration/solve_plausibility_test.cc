@@ -103,6 +103,11 @@ TEST(SolvePlausibility, ObservationsWhoseSignalIsBelowFivePercentOfTheirIntensit
   const RestoredObservationStats diverged = RestoreObservations(tiny_red_alpha, observations, &truth);
   EXPECT_GT(diverged.implausible_fraction.x(), 0.9);
   EXPECT_THROW(CheckSolveIsPlausible(diverged), std::runtime_error);
+  // A prior with no signal in red (its fit explained red by backscatter alone) says nothing: red is judged.
+  const FrustumLut no_red_signal = ConstantLut(Eigen::Vector3d(0.0, 0.5, 0.3), beta);
+  const RestoredObservationStats unknown = RestoreObservations(tiny_red_alpha, observations, &no_red_signal);
+  EXPECT_EQ(unknown.judged_fraction.x(), 1.0);
+  EXPECT_THROW(CheckSolveIsPlausible(unknown), std::runtime_error);
 }
 
 }  // namespace
