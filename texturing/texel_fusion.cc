@@ -374,22 +374,37 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     if (progress) progress->Finish();
     summary.views_read += used_views.size() - views_outside.load();
     summary.views_cast_by_pixel += views_cast_by_pixel.load();
-    std::size_t s = 0;
-    for (const auto& [begin, end] : texel_ranges) {
-      for (std::size_t t = begin; t < end; ++t, ++s) {
+    // Each chart's texels blended on their own (they write their own texels), counted per chart and
+    // summed in order.
+    std::vector<std::size_t> first_sample(texel_ranges.size() + 1, 0);
+    for (std::size_t r = 0; r < texel_ranges.size(); ++r) {
+      first_sample[r + 1] = first_sample[r] + (texel_ranges[r].second - texel_ranges[r].first);
+    }
+    struct ChartCounts {
+      std::size_t samples = 0, without_samples = 0, rejected = 0;
+    };
+    std::vector<ChartCounts> counts(texel_ranges.size());
+    ParallelFor(texel_ranges.size(), options.num_threads, [&](std::size_t r) {
+      ChartCounts& count = counts[r];
+      std::size_t s = first_sample[r];
+      for (std::size_t t = texel_ranges[r].first; t < texel_ranges[r].second; ++t, ++s) {
         const AtlasTexel& texel = layout.texels[t];
         cv::Vec3f& out = pages[texel.page].at<cv::Vec3f>(texel.y, texel.x);
         const TexelSamples& texel_samples = samples[s];
-        total_samples += texel_samples.count;
+        count.samples += texel_samples.count;
         if (texel_samples.count == 0) {
           out = cv::Vec3f::all(std::numeric_limits<float>::quiet_NaN());
-          ++summary.texels_without_samples;
+          ++count.without_samples;
           continue;
         }
-        const Eigen::Vector3f colour =
-            Blend(texel_samples, view_of_face[texel.face], options.blend, &summary.rejected_samples);
+        const Eigen::Vector3f colour = Blend(texel_samples, view_of_face[texel.face], options.blend, &count.rejected);
         out = cv::Vec3f(colour.x(), colour.y(), colour.z());
       }
+    });
+    for (const ChartCounts& count : counts) {
+      total_samples += count.samples;
+      summary.texels_without_samples += count.without_samples;
+      summary.rejected_samples += count.rejected;
     }
   }
   summary.mean_samples_per_texel = summary.num_texels ? double(total_samples) / double(summary.num_texels) : 0.0;

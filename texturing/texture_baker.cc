@@ -169,7 +169,7 @@ void BakeLabelledFaces(const Mesh& mesh, const FaceAdjacency& adjacency, const s
     colour(layout, b, batches.size(), textured.pages);
     summary.num_texels += layout.texels.size();
   }
-  ParallelFor(textured.pages.size(), options.num_threads, [&](std::size_t p) { FillUnknownTexels(textured.pages[p]); });
+  for (cv::Mat& page : textured.pages) FillUnknownTexels(page, options.num_threads);
   summary.seconds_layout += seconds_rasterising;
   summary.seconds_fusion += SecondsSince(start) - seconds_rasterising;
 

@@ -11,7 +11,8 @@
 
 namespace lutex {
 
-// `page`: CV_32FC3, NaN = unknown. A page with no known texel becomes 0.
-void FillUnknownTexels(cv::Mat& page);
+// `page`: CV_32FC3, NaN = unknown. A page with no known texel becomes 0. Rows are filled on up to
+// `num_threads` threads (<= 0: all cores); the result does not depend on how many.
+void FillUnknownTexels(cv::Mat& page, int num_threads = 1);
 
 }  // namespace lutex

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <iomanip>
 #include <stdexcept>
 
@@ -122,22 +123,37 @@ class TileBaker {
     textured.up = frame_.up;
     textured.georeference = frame_.georeference;
     const std::string uri = node.name + ".glb";
-    WriteGltf(textured, folder_ / uri, options_.gltf);
     if (node_index != 0) baked.halved_texture = HalveTexture(textured);
-    summary_.max_tile_faces = std::max(summary_.max_tile_faces, textured.mesh.faces.size());
+    const std::size_t num_faces = textured.mesh.faces.size();
+    WriteInBackground(std::move(textured), folder_ / uri);
+    summary_.max_tile_faces = std::max(summary_.max_tile_faces, num_faces);
     TilesetTile& tile = tileset_.tiles[node_index];
     tile.box = baked.box;
     tile.geometric_error = baked.geometric_error;
     tile.content_uri = uri;
     tile.children = node.children;
     LogInfo() << "tiles: " << ++done_ << "/" << tree_.nodes.size() << " tiles baked (" << node.name << ", "
-              << textured.mesh.faces.size() << " faces)";
+              << num_faces << " faces)";
     return baked;
   }
 
   const std::vector<double>& leaf_texel_sizes() const { return leaf_texel_sizes_; }
 
+  // Waits for the last tile's file; rethrows what writing it threw.
+  void FinishWriting() {
+    if (writing_.valid()) writing_.get();
+  }
+
  private:
+  // A tile's GLB (PNG encoding, mostly one core's work) is written while the next tile is baked; at most
+  // one is pending, so memory holds one finished tile more.
+  void WriteInBackground(TexturedMesh textured, fs::path path) {
+    FinishWriting();
+    writing_ = std::async(std::launch::async, [this, textured = std::move(textured), path = std::move(path)] {
+      WriteGltf(textured, path, options_.gltf);
+    });
+  }
+
   const LoadedDive& dive_;
   const TileTree& tree_;
   const std::vector<TextureView>& views_;
@@ -152,6 +168,7 @@ class TileBaker {
   TilesSummary& summary_;
   std::size_t done_ = 0;
   std::vector<double> leaf_texel_sizes_;
+  std::future<void> writing_;  // the previous tile's GLB
 };
 
 int Depth(const TileTree& tree) {
@@ -215,6 +232,7 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   TileBaker baker(dive, tree, found.views, source, chosen, options, frame, tiles_from_model,
                   folder.temporary_path(), tileset, summary);
   baker.Bake(0);
+  baker.FinishWriting();
   std::vector<double> texels = baker.leaf_texel_sizes();
   std::nth_element(texels.begin(), texels.begin() + texels.size() / 2, texels.end());
   summary.leaf_texel_size = texels[texels.size() / 2];
