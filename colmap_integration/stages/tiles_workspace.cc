@@ -145,12 +145,14 @@ class TileBaker {
   }
 
  private:
-  // A tile's GLB (PNG encoding, mostly one core's work) is written while the next tile is baked; at most
-  // one is pending, so memory holds one finished tile more.
+  // A tile's GLB (PNG encoding, mostly one core's work) is written while the next tile is baked, on one
+  // thread more than --num-threads; at most one is pending, so memory holds one finished tile more until
+  // its file is written.
   void WriteInBackground(TexturedMesh textured, fs::path path) {
     FinishWriting();
-    writing_ = std::async(std::launch::async, [this, textured = std::move(textured), path = std::move(path)] {
-      WriteGltf(textured, path, options_.gltf);
+    writing_ = std::async(std::launch::async, [this, textured = std::move(textured), path = std::move(path)]() mutable {
+      const TexturedMesh written = std::move(textured);  // freed when the file is written
+      WriteGltf(written, path, options_.gltf);
     });
   }
 
