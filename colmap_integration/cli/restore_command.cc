@@ -48,6 +48,10 @@ void AddRestoreStageOptions(OptionParser& parser, RestoreOptions* options) {
                  "      beams, red in turbid water), as strongly as the noise each image shows, without\n"
                  "      blurring edges or detail above the noise (README, 'Noise'). --no-smooth-noise keeps\n"
                  "      every pixel's own value.");
+  parser.AddIntInRange("smooth-noise-passes", &options->smoothing.passes, 1, 16,
+                "Times the smoothing runs, each on the last one's result with its noise measured again:\n"
+                "      more passes average more of the noise left where it is strong, and change\n"
+                "      next to nothing where none is left; each costs about a fifth of restore's time.");
   parser.AddString("output-encoding", &options->output_encoding, "Restored images: same (as the input), srgb8, linear16 or float.");
 }
 

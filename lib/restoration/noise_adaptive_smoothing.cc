@@ -91,27 +91,10 @@ void AccumulateNeighbours(int count, const float* __restrict c0, const float* __
   }
 }
 
-}  // namespace
-
-void NoiseAdaptiveSmoothingOptions::Check() const {
-  if (radius < 1 || radius > 16) throw std::invalid_argument("noise-adaptive smoothing: radius must be 1 to 16 pixels");
-  if (noise_radius < 1 || noise_radius > 64) {
-    throw std::invalid_argument("noise-adaptive smoothing: the noise window's radius must be 1 to 64 pixels");
-  }
-  if (!(cutoff > 0.0 && std::isfinite(cutoff))) throw std::invalid_argument("noise-adaptive smoothing: cutoff must be positive");
-}
-
-cv::Mat SmoothNoiseAdaptively(const cv::Mat& albedo, const cv::Mat& surface,
-                              const NoiseAdaptiveSmoothingOptions& options) {
-  options.Check();
-  if (albedo.type() != CV_32FC3 || surface.type() != CV_8U || surface.size() != albedo.size()) {
-    throw std::invalid_argument("noise-adaptive smoothing: a CV_32FC3 image and a CV_8U surface mask of its size");
-  }
+// One pass of steps 1-3 (header). `on_surface`: CV_32F, 1 on the surface and 0 elsewhere.
+cv::Mat SmoothOnce(const cv::Mat& albedo, const cv::Mat& surface, const cv::Mat& on_surface,
+                   const NoiseAdaptiveSmoothingOptions& options) {
   cv::Mat smoothed = albedo.clone();
-  if (!options.enabled || albedo.empty()) return smoothed;
-  cv::Mat on_surface;
-  cv::threshold(surface, on_surface, 0, 1, cv::THRESH_BINARY);
-  on_surface.convertTo(on_surface, CV_32F);
   const cv::Mat noise = NoiseOf(albedo, on_surface, options.noise_radius);
   // Planes, so that the inner loop runs over contiguous floats of one row (and vectorises): the channels
   // and 1 / (cutoff x noise) per channel (and on_surface above).
@@ -161,6 +144,32 @@ cv::Mat SmoothNoiseAdaptively(const cv::Mat& albedo, const cv::Mat& surface,
       }
     }
   }
+  return smoothed;
+}
+
+}  // namespace
+
+void NoiseAdaptiveSmoothingOptions::Check() const {
+  if (radius < 1 || radius > 16) throw std::invalid_argument("noise-adaptive smoothing: radius must be 1 to 16 pixels");
+  if (noise_radius < 1 || noise_radius > 64) {
+    throw std::invalid_argument("noise-adaptive smoothing: the noise window's radius must be 1 to 64 pixels");
+  }
+  if (!(cutoff > 0.0 && std::isfinite(cutoff))) throw std::invalid_argument("noise-adaptive smoothing: cutoff must be positive");
+  if (passes < 1 || passes > 16) throw std::invalid_argument("noise-adaptive smoothing: passes must be 1 to 16");
+}
+
+cv::Mat SmoothNoiseAdaptively(const cv::Mat& albedo, const cv::Mat& surface,
+                              const NoiseAdaptiveSmoothingOptions& options) {
+  options.Check();
+  if (albedo.type() != CV_32FC3 || surface.type() != CV_8U || surface.size() != albedo.size()) {
+    throw std::invalid_argument("noise-adaptive smoothing: a CV_32FC3 image and a CV_8U surface mask of its size");
+  }
+  if (!options.enabled || albedo.empty()) return albedo.clone();
+  cv::Mat on_surface;
+  cv::threshold(surface, on_surface, 0, 1, cv::THRESH_BINARY);
+  on_surface.convertTo(on_surface, CV_32F);
+  cv::Mat smoothed = SmoothOnce(albedo, surface, on_surface, options);
+  for (int pass = 1; pass < options.passes; ++pass) smoothed = SmoothOnce(smoothed, surface, on_surface, options);
   return smoothed;
 }
 

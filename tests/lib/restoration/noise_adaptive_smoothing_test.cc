@@ -128,6 +128,22 @@ TEST(NoiseAdaptiveSmoothing, RemovesTheNoiseRestorationAmplifiedWithoutBlurringT
   EXPECT_LT(edges_after, 0.8 * edges_box);
 }
 
+TEST(NoiseAdaptiveSmoothing, EachPassRemovesMoreOfTheNoiseLeftAndKeepsTheEdges) {
+  const cv::Mat restored = Frame().Restored(true);
+  NoiseAdaptiveSmoothingOptions options;
+  double last = Frame().MeanError(restored), last_edges = Frame().MeanError(restored, true);
+  for (int passes = 1; passes <= 3; ++passes) {
+    options.passes = passes;
+    const cv::Mat smoothed = SmoothNoiseAdaptively(restored, Frame().surface(), options);
+    const double error = Frame().MeanError(smoothed), edges = Frame().MeanError(smoothed, true);
+    std::printf("%d passes: mean error %.4f, at the albedo's edges %.4f\n", passes, error, edges);
+    EXPECT_LT(error, 0.97 * last) << passes;
+    EXPECT_LT(edges, last_edges) << passes;
+    last = error;
+    last_edges = edges;
+  }
+}
+
 TEST(NoiseAdaptiveSmoothing, LeavesANoiseFreeImageAsItWas) {
   const cv::Mat restored = Frame().Restored(false);
   const cv::Mat smoothed = SmoothNoiseAdaptively(restored, Frame().surface(), NoiseAdaptiveSmoothingOptions());
@@ -187,6 +203,9 @@ TEST(NoiseAdaptiveSmoothing, RefusesWindowsItCannotUse) {
   EXPECT_THROW(SmoothNoiseAdaptively(albedo, surface, options), std::invalid_argument);
   options = {};
   options.cutoff = 0.0;
+  EXPECT_THROW(SmoothNoiseAdaptively(albedo, surface, options), std::invalid_argument);
+  options = {};
+  options.passes = 0;
   EXPECT_THROW(SmoothNoiseAdaptively(albedo, surface, options), std::invalid_argument);
   EXPECT_THROW(SmoothNoiseAdaptively(albedo, cv::Mat(4, 4, CV_32F), {}), std::invalid_argument);
 }
