@@ -26,8 +26,10 @@ T ReadBinary(std::istream& stream, const char* what) {
 
 // The bytes from the stream's position to its end, or nothing when the stream cannot seek (a pipe). Readers
 // check a count read from a file against it before allocating, so a corrupt count fails as a truncated
-// file instead of reserving gigabytes.
+// file instead of reserving gigabytes. A stream that has already met its end (a header line with no
+// newline after it) has none left; tellg would fail there and say nothing.
 inline std::optional<std::uint64_t> BytesLeft(std::istream& stream) {
+  if (stream.eof()) return 0;
   const std::istream::pos_type here = stream.tellg();
   if (here == std::istream::pos_type(-1)) return std::nullopt;
   stream.seekg(0, std::ios::end);
