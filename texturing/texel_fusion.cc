@@ -314,11 +314,15 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
   for (std::size_t p = 0; p < passes.size(); ++p) {
     // Which faces each view samples in this pass, and where each face's samples go.
     std::vector<std::vector<PassFace>> faces_of_view(views.size());
-    std::vector<std::pair<std::size_t, std::size_t>> texel_ranges;  // of the pass's charts, in buffer order
+    // The pass's charts in buffer order: their texels [begin, end) and where their samples start.
+    struct PassChart {
+      std::size_t begin = 0, end = 0, first_sample = 0;
+    };
+    std::vector<PassChart> pass_charts;
     std::size_t num_samples = 0;
     for (const std::size_t chart : passes[p]) {
       const std::size_t chart_begin = layout.chart_offsets[chart], chart_end = layout.chart_offsets[chart + 1];
-      texel_ranges.emplace_back(chart_begin, chart_end);
+      pass_charts.push_back({chart_begin, chart_end, num_samples});
       for (std::size_t t = chart_begin; t < chart_end;) {
         const std::uint32_t face = layout.texels[t].face;
         for (const FaceViewCandidate* c = candidates.begin(face); c != candidates.end(face); ++c) {
@@ -376,18 +380,14 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     summary.views_cast_by_pixel += views_cast_by_pixel.load();
     // Each chart's texels blended on their own (they write their own texels), counted per chart and
     // summed in order.
-    std::vector<std::size_t> first_sample(texel_ranges.size() + 1, 0);
-    for (std::size_t r = 0; r < texel_ranges.size(); ++r) {
-      first_sample[r + 1] = first_sample[r] + (texel_ranges[r].second - texel_ranges[r].first);
-    }
     struct ChartCounts {
       std::size_t samples = 0, without_samples = 0, rejected = 0;
     };
-    std::vector<ChartCounts> counts(texel_ranges.size());
-    ParallelFor(texel_ranges.size(), options.num_threads, [&](std::size_t r) {
+    std::vector<ChartCounts> counts(pass_charts.size());
+    ParallelFor(pass_charts.size(), options.num_threads, [&](std::size_t r) {
       ChartCounts& count = counts[r];
-      std::size_t s = first_sample[r];
-      for (std::size_t t = texel_ranges[r].first; t < texel_ranges[r].second; ++t, ++s) {
+      std::size_t s = pass_charts[r].first_sample;
+      for (std::size_t t = pass_charts[r].begin; t < pass_charts[r].end; ++t, ++s) {
         const AtlasTexel& texel = layout.texels[t];
         cv::Vec3f& out = pages[texel.page].at<cv::Vec3f>(texel.y, texel.x);
         const TexelSamples& texel_samples = samples[s];

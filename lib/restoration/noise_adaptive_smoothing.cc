@@ -168,8 +168,8 @@ cv::Mat SmoothNoiseAdaptively(const cv::Mat& albedo, const cv::Mat& surface,
   cv::Mat on_surface;
   cv::threshold(surface, on_surface, 0, 1, cv::THRESH_BINARY);
   on_surface.convertTo(on_surface, CV_32F);
-  cv::Mat smoothed = SmoothOnce(albedo, surface, on_surface, options);
-  for (int pass = 1; pass < options.passes; ++pass) smoothed = SmoothOnce(smoothed, surface, on_surface, options);
+  cv::Mat smoothed = albedo;  // each pass writes a new image: the input is never changed
+  for (int pass = 0; pass < options.passes; ++pass) smoothed = SmoothOnce(smoothed, surface, on_surface, options);
   return smoothed;
 }
 

@@ -18,17 +18,21 @@ constexpr float kUnknown = std::numeric_limits<float>::quiet_NaN();
 
 cv::Mat UnknownPage(int rows, int cols) { return cv::Mat(rows, cols, CV_32FC3, cv::Scalar::all(kUnknown)); }
 
+void ExpectEveryTexelIs(const cv::Mat& page, const cv::Vec3f& colour) {
+  for (int row = 0; row < page.rows; ++row) {
+    for (int col = 0; col < page.cols; ++col) {
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(page.at<cv::Vec3f>(row, col)[c], colour[c], 1e-5) << row << " " << col;
+    }
+  }
+}
+
 TEST(FillUnknownTexels, TexelsAroundOneColourTakeThatColour) {
   cv::Mat page = UnknownPage(37, 53);  // odd sizes: pyramid levels with a half block at the edge
   const cv::Vec3f colour(0.2f, 0.5f, 0.8f);
   page(cv::Rect(10, 7, 9, 6)).setTo(cv::Scalar(colour[0], colour[1], colour[2]));
   page(cv::Rect(40, 25, 3, 11)).setTo(cv::Scalar(colour[0], colour[1], colour[2]));
   FillUnknownTexels(page, 2);
-  for (int row = 0; row < page.rows; ++row) {
-    for (int col = 0; col < page.cols; ++col) {
-      for (int c = 0; c < 3; ++c) ASSERT_NEAR(page.at<cv::Vec3f>(row, col)[c], colour[c], 1e-5) << row << " " << col;
-    }
-  }
+  ExpectEveryTexelIs(page, colour);
 }
 
 TEST(FillUnknownTexels, OneTexelInTheLastRowAndColumnOfAnOddPageColoursTheWholePage) {
@@ -38,11 +42,7 @@ TEST(FillUnknownTexels, OneTexelInTheLastRowAndColumnOfAnOddPageColoursTheWholeP
   const cv::Vec3f colour(0.9f, 0.3f, 0.6f);
   page.at<cv::Vec3f>(36, 52) = colour;
   FillUnknownTexels(page, 2);
-  for (int row = 0; row < page.rows; ++row) {
-    for (int col = 0; col < page.cols; ++col) {
-      for (int c = 0; c < 3; ++c) ASSERT_NEAR(page.at<cv::Vec3f>(row, col)[c], colour[c], 1e-5) << row << " " << col;
-    }
-  }
+  ExpectEveryTexelIs(page, colour);
 }
 
 TEST(FillUnknownTexels, TexelsBetweenTwoChartsTakeColoursBetweenTheirsNearestTheNearerOne) {
