@@ -6,9 +6,12 @@
 # restores the survey and prints the mean absolute error against the true albedo in percentage points.
 # About 8 minutes on 2 cores.
 #
-# usage: [RESTORE_OPTIONS="..."] scripts/water_rig_sweep.sh [LUTEX_BINARY] [OUTPUT_FOLDER]
+# usage: [FORWARD_SCATTER=1] [CALIBRATE_OPTIONS="..."] [RESTORE_OPTIONS="..."] scripts/water_rig_sweep.sh [LUTEX_BINARY] [OUTPUT_FOLDER]
 #   LUTEX_BINARY     default build/lutex; pass another build's binary to compare two versions
 #   OUTPUT_FOLDER    default a new folder under /tmp; simulated dives there are reused by later runs
+#   FORWARD_SCATTER  1: the dives are rendered with the water's forward scattering (lib/model/simulator.h),
+#                    in folders of their own (NAME_fs)
+#   CALIBRATE_OPTIONS more options for lutex calibrate, e.g. "--remove-forward-scatter --reference-water coastal"
 #   RESTORE_OPTIONS  more options for lutex restore, e.g. --no-smooth-noise
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"
@@ -20,12 +23,13 @@ echo "lutex: $lutex; dives in $out"
 for water in clear coastal harbour; do
   for rig in sym asym; do
     dive="$out/${water}_$rig"
+    if [ "${FORWARD_SCATTER:-0}" = 1 ]; then dive="${dive}_fs"; fi
     if [ ! -d "$dive/survey/images" ]; then
       mkdir -p "$dive"
       # The example's scene files with this water, this rig and a smaller camera.
-      /usr/bin/python3 - "$repo/examples" "$water" "$rig" "$dive" <<'EOF'
+      /usr/bin/python3 - "$repo/examples" "$water" "$rig" "$dive" "${FORWARD_SCATTER:-0}" <<'EOF'
 import json, os, sys
-examples, water, rig, dive = sys.argv[1:]
+examples, water, rig, dive, forward_scatter = sys.argv[1:]
 waters = {
     "clear": {"description": "clear", "absorption": [0.35, 0.05, 0.02], "scattering": [0.04, 0.045, 0.05], "g": 0.88},
     "coastal": {"description": "coastal", "absorption": [0.45, 0.12, 0.25], "scattering": [0.35, 0.4, 0.38], "g": 0.9},
@@ -42,6 +46,8 @@ camera = {"model": "PINHOLE", "width": 320, "height": 240, "params": [160, 160, 
 for source, name in [("scenes/clear_two_lights.json", "survey"), ("dive/board.json", "board"), ("dive/purewater.json", "purewater")]:
     scene = json.load(open(os.path.join(examples, source)))
     scene.update(water=waters[water], lights=rigs[rig], camera=camera)
+    if forward_scatter == "1":
+        scene.setdefault("simulator", {})["forward_scatter"] = True
     if isinstance(scene.get("mesh"), str):
         scene["mesh"] = os.path.join(examples, os.path.dirname(source), scene["mesh"])
     if name == "survey":
@@ -56,7 +62,7 @@ EOF
     if ! "$lutex" calibrate --workspace "$dive/survey" --mesh "$dive/survey/scene/mesh.ply" \
         --targets "$repo/examples/dive/board_targets.json" --targets-workspace "$dive/board" \
         --targets-mesh "$dive/board/scene/mesh.ply" --pure-water "$dive/purewater" \
-        --output "$run/lut.lut" --log-level error > "$run/calibrate.log" 2>&1; then
+        --output "$run/lut.lut" --log-level error ${CALIBRATE_OPTIONS:-} > "$run/calibrate.log" 2>&1; then
       echo "$water $rig: calibration refused: $(tail -1 "$run/calibrate.log")"
       continue
     fi

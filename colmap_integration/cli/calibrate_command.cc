@@ -57,11 +57,13 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
   parser.AddString("reference-water", &options->reference_water, "The water the fit starts from: clear or coastal. Its attenuations\n"
                    "      are then fitted to the observations (README, 'The water prior'); the preset only shapes backscatter.");
   parser.AddFlag("remove-forward-scatter", &options->remove_forward_scatter,
-                 "Take the reference water's forward scattering (light from the surface scattered on its way\n"
-                 "      to the camera, which blurs the lit centre over the image: turbid water's veil) out of\n"
-                 "      every image before fitting (README, 'Forward scattering'); recorded in the LUT, and\n"
-                 "      lutex restore takes out the same. Recommended in turbid water with --reference-water\n"
-                 "      coastal. Ignored --in-air.");
+                 "Take forward scattering (light from the surface scattered on its way to the camera, which\n"
+                 "      blurs the lit centre over the image: turbid water's veil) out of every image before\n"
+                 "      fitting (README, 'Forward scattering'): the reference water's, or less where a first fit\n"
+                 "      measures the water to scatter less (printed). Recorded in the LUT; lutex restore takes\n"
+                 "      out the same. Recommended in turbid water with --reference-water coastal; harmless in\n"
+                 "      clear water, where the measurement lowers it.\n"
+                 "      Ignored --in-air.");
   parser.AddInt("lut-nx", &options->calibration.grid.nx, "LUT cells across the image (levels: a tenth, a half, all).");
   parser.AddInt("lut-ny", &options->calibration.grid.ny, "LUT cells down the image.");
   parser.AddInt("lut-nz", &options->calibration.grid.nz, "LUT slabs in depth.");

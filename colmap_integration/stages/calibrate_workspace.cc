@@ -26,6 +26,7 @@
 #include "lib/calibration/exposure_gains.h"
 #include "lib/calibration/chessboard_target.h"
 #include "lib/calibration/backscatter_set_aside.h"
+#include "lib/calibration/forward_scatter_estimate.h"
 #include "lib/calibration/pure_water_sampling.h"
 #include "lib/calibration/reshading.h"
 #include "lib/calibration/targets.h"
@@ -553,8 +554,6 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   // The rig file, read once: its lights are the shading from here on.
   CalibrateOptions options = given;
   if (!options.shading_rig.empty()) options.calibration.grid.shading.rig = ReadLightRig(options.shading_rig);
-  // From here on every image is sampled without it, and the LUT records it for restoration.
-  if (options.remove_forward_scatter) options.calibration.grid.forward_scatter = ForwardScatter::Of(ReferenceWater(options));
   const Camera& camera = SingleImageSize(dive.model(), dive.workspace().sparse_dir);
 
   CalibrationOptions calibration = options.calibration;
@@ -609,15 +608,32 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   };
   CalibrateSummary summary;
   CalibrationResult result = gather_and_solve(BackscatterSetAside{}, &summary);
-  if (!calibration.grid.forward_scatter.IsNone()) {
-    // Forward scattering spreads the light from the surfaces, not the backscatter, which the first LUT
-    // now estimates (backscatter_set_aside.h).
-    LogInfo() << "sampling again with the first LUT's backscatter set aside from the forward scattering";
+  const ForwardScatter scatter = options.remove_forward_scatter && summary.water_prior
+                                     ? ForwardScatterToTakeOut(*summary.water_prior, ReferenceWater(options))
+                                     : ForwardScatter{};
+  const double measured_scattering =
+      options.remove_forward_scatter && summary.water_prior ? MeasuredScattering(*summary.water_prior) : 0.0;
+  if (options.remove_forward_scatter && summary.water_prior) {
+    LogInfo() << "forward scattering: the water scatters at most " << std::fixed << std::setprecision(3)
+              << measured_scattering << " per m (measured), the " << options.reference_water
+              << " water " << DescribeForwardScatter(ForwardScatter::Of(ReferenceWater(options)))
+              << "; taking out the smaller (forward_scatter_estimate.h)" << std::defaultfloat;
+  }
+  if (!scatter.IsNone()) {
+    // From here on every image is sampled without it, and the LUT records it for restoration. It spreads
+    // the light from the surfaces, not the backscatter, which the first LUT now estimates
+    // (backscatter_set_aside.h).
+    LogInfo() << "sampling again with " << DescribeForwardScatter(scatter)
+              << " taken out and the first LUT's backscatter set aside";
+    options.calibration.grid.forward_scatter = scatter;
+    calibration.grid.forward_scatter = scatter;
     const CalibrationResult first = std::move(result);
     const CalibrateSummary first_summary = summary;
     summary = {};
     result = gather_and_solve(BackscatterSetAside{&first.lut, &first_summary.exposure}, &summary);
   }
+  summary.forward_scatter = scatter;
+  summary.measured_scattering = measured_scattering;
   for (const std::string& warning : summary.warnings) LogWarning() << warning;
 
   summary.restored_observations =
@@ -681,8 +697,13 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << 100 * summary.restored_observations.implausible_fraction.x() << " "
             << 100 * summary.restored_observations.implausible_fraction.y() << " "
             << 100 * summary.restored_observations.implausible_fraction.z() << " %\n"
-            << (summary.water_prior ? "  water prior: " + DescribeWaterPrior(*summary.water_prior) + "\n" : std::string())
-            << "  exposure: " << DescribeExposure(summary) << "\n";
+            << (summary.water_prior ? "  water prior: " + DescribeWaterPrior(*summary.water_prior) + "\n" : std::string());
+  if (!summary.forward_scatter.IsNone()) {
+    out << "  forward scattering taken out: " << DescribeForwardScatter(summary.forward_scatter)
+        << " (the water measured to scatter at most " << std::setprecision(3) << summary.measured_scattering
+        << " per m)\n";
+  }
+  out << "  exposure: " << DescribeExposure(summary) << "\n";
   for (const std::string& warning : summary.warnings) out << "  warning: " << warning << "\n";
   out << "  LUT:      " << summary.lut.string() << "\n"
       << "  coverage: " << CoverageLutPath(summary.lut).string() << "\n"

@@ -32,6 +32,7 @@
 #include "lib/calibration/solve_plausibility.h"
 #include "lib/calibration/water_prior.h"
 #include "lib/image/image_io.h"
+#include "lib/model/forward_scatter.h"
 
 namespace lutex {
 
@@ -59,13 +60,12 @@ struct CalibrateOptions {
   // and phase function shape backscatter; the attenuations are fitted): "clear" or "coastal" (ignored
   // in air).
   std::string reference_water = "clear";
-  // Take the reference water's forward scattering (its scattering b and anisotropy g) out of every image
-  // before sampling it (lib/model/forward_scatter.h), and record it in the LUT so that restoration takes
-  // out the same. Ignored in air. On the Blender sets it brought the worst ColorChecker patch from 32.4 to
-  // 13.6 pp in turbid water (reference water coastal) and from 6.3 to 4.2 pp in clear water (clear).
-  // Off by default because b is the preset's, not measured: where it exceeds the water's, the correction
-  // takes too much from dark surfaces beside bright ones (a chessboard's black squares go to 0 with the
-  // clear preset's b in lutex's own simulator, which renders no forward scattering, and the fit then fails).
+  // Take forward scattering out of every image before sampling it (lib/model/forward_scatter.h) and record
+  // it in the LUT so that restoration takes out the same: the reference water's, lowered per channel to
+  // the scattering measured from a first fit (lib/calibration/forward_scatter_estimate.h says why the
+  // reference is the most taken out). Ignored in air. Off by default: lutex's own simulator renders no
+  // forward scattering unless asked, and where an image has less than is taken out, dark surfaces beside
+  // bright ones come out too dark.
   bool remove_forward_scatter = false;
   // A light-rig file ("lights" as in a scene description, lib/model/light_rig_json.h); when given, its
   // lights replace calibration.grid.shading.rig.
@@ -123,6 +123,12 @@ struct CalibrateSummary {
   // The water (or in air the light alone) fitted under the LUT (lib/calibration/water_prior.h); its lut is
   // the calibration's reference and tells the divergence check where the signal can pin an albedo.
   std::optional<WaterPrior> water_prior;
+  // What was taken out of every image as forward scattering (--remove-forward-scatter,
+  // lib/calibration/forward_scatter_estimate.h); none otherwise. The LUT records the same.
+  ForwardScatter forward_scatter;
+  // With --remove-forward-scatter: the water's scattering measured from the first fit, per m (the most it
+  // can be; forward_scatter_estimate.h).
+  double measured_scattering = 0.0;
   // The exposure the LUT is for: EXIF factors and reference, and the gains fitted per workspace image.
   ExposureRecord exposure;
   std::size_t num_exif_images = 0;  // calibration images whose EXIF gave the factors used

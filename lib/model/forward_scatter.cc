@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -80,6 +81,13 @@ void ExpectImageAndRange(const cv::Mat& image, const cv::Mat& range) {
 }
 
 }  // namespace
+
+std::string DescribeForwardScatter(const ForwardScatter& scatter) {
+  char text[120];
+  std::snprintf(text, sizeof(text), "b %.3f %.3f %.3f per m (r g b), g %.2f", scatter.scattering.x(),
+                scatter.scattering.y(), scatter.scattering.z(), scatter.anisotropy_g);
+  return text;
+}
 
 ForwardScatter ForwardScatter::Of(const Water& water) {
   ForwardScatter scatter;

@@ -42,6 +42,7 @@
 // leaves 2.5 % after 8). Radiance is not negative: where the scattering given exceeds the water's, dark pixels beside
 // bright ones would come out below 0, and are set to 0.
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -66,6 +67,9 @@ struct ForwardScatter {
     return scattering == other.scattering && anisotropy_g == other.anisotropy_g;
   }
 };
+
+// "b 0.402 0.402 0.402 per m (r g b), g 0.90", for messages.
+std::string DescribeForwardScatter(const ForwardScatter& scatter);
 
 // The fraction of the kernel k's energy within angle `phi_rad` of its centre (0 at 0, 1 at pi / 2).
 double ForwardScatterEnergyWithin(double phi_rad, double anisotropy_g);

@@ -138,16 +138,26 @@ TEST(BlenderCalibration, ColorCheckerPatchesFromBoardsAndPureWater) {
 // In turbid water (calib_boards_turbid, purewater_turbid, checker_turbid) the pure-water frames must now
 // be accepted (before, every one was rejected for its fireflies), the water measured, and the restored
 // ColorChecker far better than the raw images (tools' README: raw median 17.7, worst 89.0 with an oracle
-// gain per channel). The reference water is the coastal preset, whose forward scattering is taken out of
-// the images (lib/model/forward_scatter.h): the turbid goals (median <= 5, worst <= 20) hold.
+// gain per channel). The reference water is the coastal preset, whose forward scattering, lowered to what
+// the boards say the water scatters, is taken out of the images (lib/model/forward_scatter.h): the
+// issue's turbid goals (median <= 5, worst <= 20) hold.
 TEST(BlenderCalibration, TurbidWaterIsMeasuredAndTheColorCheckerRestored) {
   const auto dev = testing::SharedDevDatasets();
   if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
   testing::TempDir dir;
   const CalibrateSummary calibrated = CalibrateFromBoards(*dev, "turbid", dir.path(), true, "coastal", true);
-  EXPECT_EQ(ReadLut(calibrated.lut).grid().forward_scatter, ForwardScatter::Of(*WaterPreset("coastal")));
+  // The scattering measured from the first fit (lib/calibration/forward_scatter_estimate.h; 0.32 per m
+  // with this rig, 0.39 with the fitted one) lies near the water's b (0.35 - 0.42), below what its
+  // attenuation leaves beyond pure water's absorption (0.45); the preset's is taken out where it is smaller.
+  const testing::BlenderDataset boards = testing::LoadBlenderDataset(*dev / "calib_boards_turbid");
+  const double measured = calibrated.measured_scattering;
+  EXPECT_GE(measured, 0.8 * boards.water.scattering.minCoeff());
+  EXPECT_LE(measured, (boards.water.absorption + boards.water.scattering - WaterPreset("clear")->absorption).minCoeff());
+  const ForwardScatter taken_out = ReadLut(calibrated.lut).grid().forward_scatter;
+  EXPECT_EQ(taken_out, calibrated.forward_scatter);
+  EXPECT_EQ(taken_out.scattering, WaterPreset("coastal")->scattering.cwiseMin(Eigen::Vector3d::Constant(measured)));
   EXPECT_EQ(calibrated.num_pure_water_skipped, 0u);
-  ExpectPhysicalSignalAttenuation(calibrated, testing::LoadBlenderDataset(*dev / "calib_boards_turbid"));
+  ExpectPhysicalSignalAttenuation(calibrated, boards);
   const std::vector<double> errors = SortedPatchErrors(*dev / "checker_turbid", calibrated.lut, dir.path());
   ASSERT_GT(errors.size(), 100u);
   std::printf("checker_turbid: median %.2f, p90 %.2f, worst %.2f\n", errors[errors.size() / 2],

@@ -2,12 +2,14 @@
 // observations made with the simulator's own image formation (I = alpha cos_theta rho + beta from its
 // TrueLut): known colours of two albedos, correspondences with a grey-world scale, pure water.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "lib/calibration/forward_scatter_estimate.h"
 #include "lib/calibration/water_prior.h"
 #include "lib/geometry/mesh.h"
 #include "lib/model/shading.h"
@@ -113,6 +115,42 @@ TEST(WaterPrior, RecoversATurbidWaterFromTwoKnownColoursWithTheRigGiven) {
     const Eigen::Vector3d reached = prior.backscatter_reached.Lookup(pixel.x(), pixel.y(), point.z()).beta;
     EXPECT_LT((reached - expected).cwiseAbs().maxCoeff(), 0.05) << point.transpose();
   });
+}
+
+// The scattering measured from the fitted attenuation (lib/calibration/forward_scatter_estimate.h), in a
+// clear, a turbid and a harbour water: never below the water's least b (every water absorbs at least what
+// pure water does) and at most the bound its attenuation leaves; exact where the water absorbs no more
+// than pure water (the clear one, b 0.04 - 0.05). What is taken out is the smaller of it and the
+// reference water's b: the coastal preset's in turbid water, the measurement in the clear one.
+TEST(WaterPrior, MeasuresTheScatteringOfClearTurbidAndHarbourWater) {
+  Water clear = *WaterPreset("clear");
+  clear.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
+  Water harbour;
+  harbour.absorption = Eigen::Vector3d(0.6, 0.35, 0.75);
+  harbour.scattering = Eigen::Vector3d(0.8, 0.9, 0.85);
+  const Eigen::Vector3d pure_water_absorption = WaterPreset("clear")->absorption;
+  const Water coastal = *WaterPreset("coastal");
+  const LightRig rig = testing::TwoCosineLights(0.4, 1.0, 2.0);
+  for (const Water& water : {clear, TurbidWater(), harbour}) {
+    const Truth truth = MakeTruth(rig, water);
+    ObservationSet observations;
+    observations.known_colors = KnownColours(truth);
+    WaterPriorOptions options;
+    options.start = coastal;
+    const WaterPrior prior = FitWaterPrior(observations, rig, truth.camera, truth.grid, options);
+    const double b = MeasuredScattering(prior);
+    const ForwardScatter taken_out = ForwardScatterToTakeOut(prior, coastal);
+    std::printf("b %.3f %.3f %.3f: measured %.3f, taken out %s\n", water.scattering.x(), water.scattering.y(),
+                water.scattering.z(), b, DescribeForwardScatter(taken_out).c_str());
+    EXPECT_GE(b, water.scattering.minCoeff() - 0.01);
+    EXPECT_LE(b, (water.Attenuation() - pure_water_absorption).minCoeff() + 0.01);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(taken_out.scattering[c], std::min(b, coastal.scattering[c])) << c;
+    EXPECT_EQ(taken_out.anisotropy_g, coastal.anisotropy_g);
+  }
+  WaterPrior in_air;
+  in_air.in_air = true;
+  EXPECT_EQ(MeasuredScattering(in_air), 0.0);
+  EXPECT_TRUE(ForwardScatterToTakeOut(in_air, coastal).IsNone());
 }
 
 TEST(WaterPrior, FindsThePairOfLightsBesideTheCameraWhenTheRigIsAGuess) {
