@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace lutex {
 
@@ -32,6 +33,19 @@ std::size_t ParseMebibytes(const std::string& flag, const std::string& text) {
     throw std::invalid_argument("--" + flag + " must be a number of MiB, at least 1, not '" + text + "'");
   }
   return static_cast<std::size_t>(mib * 1024.0 * 1024.0);
+}
+
+void AddImageCacheOption(OptionParser& parser, std::initializer_list<std::size_t*> bytes) {
+  const std::vector<std::size_t*> targets(bytes);
+  parser.AddCustom("image-cache", std::to_string(*targets.front() >> 20),
+                   "MiB of decoded images kept for the next tiles: a view is read once per tile that sees it,\n"
+                   "      and neighbouring tiles see mostly the same views (384 MiB holds ten 12 MP 8-bit\n"
+                   "      images; a 16-bit restored image takes twice as much). 0 = none: least memory, most\n"
+                   "      decoding.",
+                   [targets](const std::string& text) {
+                     const std::size_t value = text == "0" ? 0 : ParseMebibytes("image-cache", text);
+                     for (std::size_t* target : targets) *target = value;
+                   });
 }
 
 void AddMemoryLimitOption(OptionParser& parser, std::size_t* bytes) {

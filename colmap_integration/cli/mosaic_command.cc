@@ -45,8 +45,8 @@ int RunMosaicCommand(int argc, char** argv) {
       "else the model's own frame (x east, y north, z up; no CRS).\n"
       "Outputs: W/lutex/mosaic/ortho.tif (8-bit sRGB + alpha; 16-bit linear with --encoding linear16) and\n"
       "W/lutex/mosaic/dem.tif (float32 heights), tiled 512, DEFLATE, with overviews. The grid is processed\n"
-      "in tiles, each reading only the images that see it: memory is bounded by the tile size, not by the\n"
-      "survey's area.");
+      "in tiles, each reading only the images that see it: memory is bounded by the tile size and the image\n"
+      "cache, not by the survey's area.");
   AddDiveOptions(parser, &options.workspace, &options.mesh);
   parser.AddPath("images", &options.views.images, "Images to map (default W/lutex/restored, else W/images).");
   AddImageEncodingOption(parser, "image-encoding", &options.views.image_encoding, "How those images are encoded:");
@@ -61,6 +61,7 @@ int RunMosaicCommand(int argc, char** argv) {
   AddViewFusionOptions(parser, &options.ortho.baking);
   AddThreadsOption(parser, &options.ortho.baking.num_threads);
   AddMemoryLimitOption(parser, &options.memory_limit_bytes);
+  AddImageCacheOption(parser, {&options.picture_cache_bytes});
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] { PrintMosaicSummary(std::cout, MosaicWorkspace(options)); });
   return 0;

@@ -67,7 +67,7 @@ int RunRunCommand(int argc, char** argv) {
   parser.AddFlag("tiles", &options.make_tiles,
                  "Make 3D Tiles when the model is georeferenced (--no-tiles to skip).");
   AddTileFacesOption(parser, &options.tiles);
-  AddImageCacheOption(parser, &options.tiles);
+  AddImageCacheOption(parser, {&options.tiles.picture_cache_bytes, &options.mosaic.picture_cache_bytes});
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {
     for (const char* stage : {"mesh", "calibrate", "restore", "texture", "mosaic", "tiles"}) {

@@ -34,24 +34,13 @@ int RunTilesCommand(int argc, char** argv) {
   AddTileFacesOption(parser, &options);
   AddThreadsOption(parser, &options.baking.num_threads);
   AddMemoryLimitOption(parser, &options.memory_limit_bytes);
-  AddImageCacheOption(parser, &options);
+  AddImageCacheOption(parser, {&options.picture_cache_bytes});
   AddGeoreferenceOptions(parser, &options.georeference);
   AddBakingOptions(parser, &options.baking, &options.views.ignore_confidence, &options.up_axis);
   AddGltfOptions(parser, &options.gltf);
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] { PrintTilesSummary(std::cout, TilesWorkspace(options)); });
   return 0;
-}
-
-void AddImageCacheOption(OptionParser& parser, TilesOptions* options) {
-  parser.AddCustom("image-cache", std::to_string(options->picture_cache_bytes >> 20),
-                   "MiB of decoded images kept for the next tiles: a view is read once per tile that sees it,\n"
-                   "      and neighbouring tiles see mostly the same views (384 MiB holds ten 12 MP 8-bit\n"
-                   "      images; a 16-bit restored image takes twice as much). 0 = none: least memory, most\n"
-                   "      decoding.",
-                   [options](const std::string& text) {
-                     options->picture_cache_bytes = text == "0" ? 0 : ParseMebibytes("image-cache", text);
-                   });
 }
 
 void AddTileFacesOption(OptionParser& parser, TilesOptions* options) {

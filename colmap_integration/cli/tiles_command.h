@@ -13,7 +13,4 @@ int RunTilesCommand(int argc, char** argv);
 // Registers --tile-faces (options->tree.max_faces): a whole number of faces, at least 1.
 void AddTileFacesOption(OptionParser& parser, TilesOptions* options);
 
-// Registers --image-cache (options->picture_cache_bytes): MiB, 0 for none.
-void AddImageCacheOption(OptionParser& parser, TilesOptions* options);
-
 }  // namespace lutex

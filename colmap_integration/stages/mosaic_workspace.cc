@@ -103,8 +103,10 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
+  MemoryEstimate baking_memory = TextureBakingMemory(options.ortho.baking, dive.mesh().faces.size());
+  baking_memory.Add("the decoded-picture cache", 1.0, static_cast<double>(options.picture_cache_bytes));
   CheckStageMemory("mosaic", dive, options.ortho.baking.num_threads, kImageStageBytesPerPixel,
-                   options.memory_limit_bytes, TextureBakingMemory(options.ortho.baking, dive.mesh().faces.size()));
+                   options.memory_limit_bytes, baking_memory);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   MosaicSummary summary;
@@ -112,7 +114,9 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   const MapFrame frame(summary.georeference.georeference);
   summary.crs = frame.crs();
   summary.crs_name = frame.crs_name();
-  const WorkspaceViews found = FindWorkspaceViews(workspace, dive.model(), options.views, "mosaic");
+  WorkspaceViewsOptions views_options = options.views;
+  views_options.picture_cache_bytes = options.picture_cache_bytes;
+  const WorkspaceViews found = FindWorkspaceViews(workspace, dive.model(), views_options, "mosaic");
   summary.images = found.images;
   summary.confidence = found.confidence;
   if (!frame.HasCrs()) {

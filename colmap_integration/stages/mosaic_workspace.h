@@ -40,6 +40,10 @@ struct MosaicOptions {
   // available memory. The estimate counts the fusion's budget (ortho.baking.fusion) and the faces'
   // tables as parts.
   std::size_t memory_limit_bytes = 0;
+  // Decoded pictures kept for the next tiles (views.picture_cache_bytes): a view is read once per tile of
+  // the grid that sees it, and the tiles, done row by row, see mostly the same views as their neighbours
+  // (kDefaultPictureCacheBytes). 0: none.
+  std::size_t picture_cache_bytes = kDefaultPictureCacheBytes;
   void Check() const;
 };
 

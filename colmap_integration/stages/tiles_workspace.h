@@ -50,9 +50,8 @@ struct TilesOptions {
   GeoreferenceOptions georeference;
   std::size_t memory_limit_bytes = 0;  // 0: the machine's available memory (stage_memory.h)
   // Decoded pictures kept for the next tiles (views.picture_cache_bytes): a view is read once per tile
-  // that sees it, and neighbouring tiles see mostly the same views. 384 MiB holds ten 12 MP 8-bit
-  // pictures (README, 'lutex tiles': what 128 to 384 MiB gave at 12 MP). 0: none.
-  std::size_t picture_cache_bytes = std::size_t{384} << 20;
+  // that sees it, and neighbouring tiles see mostly the same views (kDefaultPictureCacheBytes). 0: none.
+  std::size_t picture_cache_bytes = kDefaultPictureCacheBytes;
   void Check() const;
 };
 

@@ -116,13 +116,15 @@ TEST_F(BlenderMosaic, AModelAtUtmCoordinatesGivesTheSamePixels) {
   }
 }
 
-TEST_F(BlenderMosaic, OneAndTwoThreadsMakeTheSamePixels) {
+// One thread without the decoded-image cache, two with it (the default): the same bytes.
+TEST_F(BlenderMosaic, OneAndTwoThreadsWithAndWithoutTheImageCacheMakeTheSamePixels) {
   testing::TempDir dir;
   std::vector<testing::GeoTiff> maps;
   for (int threads : {1, 2}) {
     MosaicOptions options = Mapping(survey_, survey_ / "scene" / "mesh.ply", dir.path() / std::to_string(threads), 0.01);
     options.ortho.tile_size = 256;  // several tiles
     options.ortho.baking.num_threads = threads;
+    if (threads == 1) options.picture_cache_bytes = 0;
     MosaicWorkspace(options);
     maps.push_back(testing::ReadGeoTiff(dir.path() / std::to_string(threads) / "ortho.tif"));
     maps.push_back(testing::ReadGeoTiff(dir.path() / std::to_string(threads) / "dem.tif"));
