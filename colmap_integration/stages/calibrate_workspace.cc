@@ -307,6 +307,11 @@ void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationR
                                 restored.implausible_fraction.z()}},
       {"median_albedo", {restored.median_albedo.x(), restored.median_albedo.y(), restored.median_albedo.z()}}};
   if (summary.water_prior) json["water_prior"] = WaterPriorJson(*summary.water_prior);
+  if (summary.measured_scattering) {
+    json["forward_scatter"] = {{"measured_scattering", *summary.measured_scattering},
+                               {"taken_out", Vector3Json(summary.forward_scatter.scattering)},
+                               {"anisotropy_g", summary.forward_scatter.anisotropy_g}};
+  }
   if (summary.albedo_span.count > 0) {
     json["albedo_span"] = {{"lowest", Vector3Json(summary.albedo_span.lowest)},
                            {"highest", Vector3Json(summary.albedo_span.highest)}};
@@ -608,14 +613,13 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   };
   CalibrateSummary summary;
   CalibrationResult result = gather_and_solve(BackscatterSetAside{}, &summary);
-  const ForwardScatter scatter = options.remove_forward_scatter && summary.water_prior
-                                     ? ForwardScatterToTakeOut(*summary.water_prior, ReferenceWater(options))
-                                     : ForwardScatter{};
-  const double measured_scattering =
-      options.remove_forward_scatter && summary.water_prior ? MeasuredScattering(*summary.water_prior) : 0.0;
-  if (options.remove_forward_scatter && summary.water_prior) {
-    LogInfo() << "forward scattering: the water scatters at most " << std::fixed << std::setprecision(3)
-              << measured_scattering << " per m (measured), the " << options.reference_water
+  ForwardScatter scatter;
+  std::optional<double> measured_scattering;
+  if (options.remove_forward_scatter && !options.calibration.in_air) {
+    measured_scattering = MeasuredScattering(*summary.water_prior);
+    scatter = ForwardScatterToTakeOut(*summary.water_prior, ReferenceWater(options));
+    LogInfo() << "forward scattering: the water scatters about " << std::fixed << std::setprecision(3)
+              << *measured_scattering << " per m (measured), the " << options.reference_water
               << " water " << DescribeForwardScatter(ForwardScatter::Of(ReferenceWater(options)))
               << "; taking out the smaller (forward_scatter_estimate.h)" << std::defaultfloat;
   }
@@ -698,9 +702,10 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << 100 * summary.restored_observations.implausible_fraction.y() << " "
             << 100 * summary.restored_observations.implausible_fraction.z() << " %\n"
             << (summary.water_prior ? "  water prior: " + DescribeWaterPrior(*summary.water_prior) + "\n" : std::string());
-  if (!summary.forward_scatter.IsNone()) {
-    out << "  forward scattering taken out: " << DescribeForwardScatter(summary.forward_scatter)
-        << " (the water measured to scatter at most " << std::setprecision(3) << summary.measured_scattering
+  if (summary.measured_scattering) {
+    out << "  forward scattering taken out: "
+        << (summary.forward_scatter.IsNone() ? std::string("none") : DescribeForwardScatter(summary.forward_scatter))
+        << " (the water measured to scatter about " << std::setprecision(3) << *summary.measured_scattering
         << " per m)\n";
   }
   out << "  exposure: " << DescribeExposure(summary) << "\n";

@@ -126,9 +126,9 @@ struct CalibrateSummary {
   // What was taken out of every image as forward scattering (--remove-forward-scatter,
   // lib/calibration/forward_scatter_estimate.h); none otherwise. The LUT records the same.
   ForwardScatter forward_scatter;
-  // With --remove-forward-scatter: the water's scattering measured from the first fit, per m (the most it
-  // can be; forward_scatter_estimate.h).
-  double measured_scattering = 0.0;
+  // With --remove-forward-scatter in water: the water's scattering measured from the first fit, per m
+  // (an estimate; forward_scatter_estimate.h says how good). Unset otherwise.
+  std::optional<double> measured_scattering;
   // The exposure the LUT is for: EXIF factors and reference, and the gains fitted per workspace image.
   ExposureRecord exposure;
   std::size_t num_exif_images = 0;  // calibration images whose EXIF gave the factors used

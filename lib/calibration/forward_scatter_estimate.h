@@ -23,6 +23,8 @@
 // too high by the water's absorption beyond pure water's in the channel where that is least (dissolved
 // matter and particles absorb as well): on the simulator's own alpha (water_prior_test.cc) 0.45 for a
 // turbid water of b 0.35 - 0.42, 1.05 for the harbour water; on the Blender turbid boards 0.39.
+// It is an estimate rather than a bound, since cs is fitted: in lutex's simulated clear water (b 0.04)
+// it came out at 0.018 and 0 (two rigs), on the Blender turbid boards with the exact rig at 0.32.
 // Where the prior's model of the rig is off (a guessed rig in harbour water), cs and so b come out higher
 // still, which the reference water's bound catches.
 //

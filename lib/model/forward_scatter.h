@@ -88,8 +88,7 @@ cv::Mat ConvolveForwardScatterKernel(const cv::Mat& image, const ForwardScatterK
 
 // The signal after forward scattering, t R + (1 - t) (k * R), of a CV_32FC3 radiance image; `range` is
 // CV_32F, the distance [m] from the camera to each pixel's surface along its ray, NaN where there is none
-// (there t = 1). What the tests use to put forward scattering into an image; lutex's simulator does not
-// render it yet.
+// (there t = 1). What lutex's simulator renders with (lib/model/simulator.h, off unless a scene asks).
 cv::Mat AddForwardScatter(const cv::Mat& radiance, const cv::Mat& range, const ForwardScatterKernel& kernel,
                           const Eigen::Vector3d& scattering_per_m);
 

@@ -150,7 +150,8 @@ TEST(BlenderCalibration, TurbidWaterIsMeasuredAndTheColorCheckerRestored) {
   // with this rig, 0.39 with the fitted one) lies near the water's b (0.35 - 0.42), below what its
   // attenuation leaves beyond pure water's absorption (0.45); the preset's is taken out where it is smaller.
   const testing::BlenderDataset boards = testing::LoadBlenderDataset(*dev / "calib_boards_turbid");
-  const double measured = calibrated.measured_scattering;
+  ASSERT_TRUE(calibrated.measured_scattering);
+  const double measured = *calibrated.measured_scattering;
   EXPECT_GE(measured, 0.8 * boards.water.scattering.minCoeff());
   EXPECT_LE(measured, (boards.water.absorption + boards.water.scattering - WaterPreset("clear")->absorption).minCoeff());
   const ForwardScatter taken_out = ReadLut(calibrated.lut).grid().forward_scatter;
