@@ -38,10 +38,11 @@ std::size_t ParseMebibytes(const std::string& flag, const std::string& text) {
 void AddImageCacheOption(OptionParser& parser, std::initializer_list<std::size_t*> bytes) {
   const std::vector<std::size_t*> targets(bytes);
   parser.AddCustom("image-cache", std::to_string(*targets.front() >> 20),
-                   "MiB of decoded images kept for the next tiles: a view is read once per tile that sees it,\n"
-                   "      and neighbouring tiles see mostly the same views (384 MiB holds ten 12 MP 8-bit\n"
-                   "      images; a 16-bit restored image takes twice as much). 0 = none: least memory, most\n"
-                   "      decoding.",
+                   "MiB of decoded images and confidence maps kept for the next tiles of 3D Tiles and the\n"
+                   "      mosaic: a view is read once per tile that sees it, and neighbouring tiles see mostly\n"
+                   "      the same views (384 MiB holds ten 12 MP 8-bit images; a 16-bit restored image takes\n"
+                   "      twice as much, its confidence map as much as an 8-bit image). 0 = none: least\n"
+                   "      memory, most decoding.",
                    [targets](const std::string& text) {
                      const std::size_t value = text == "0" ? 0 : ParseMebibytes("image-cache", text);
                      for (std::size_t* target : targets) *target = value;

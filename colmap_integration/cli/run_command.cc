@@ -30,8 +30,8 @@ int RunRunCommand(int argc, char** argv) {
       "  texture    one albedo texture for the mesh                          -> model.glb\n"
       "  mosaic     a georeferenced orthomosaic and DEM (options as lutex mosaic; --no-mosaic to skip)\n"
       "                                                                      -> mosaic/ortho.tif, dem.tif\n"
-      "  tiles      3D Tiles for web map viewers, for a georeferenced model (--tile-faces and\n"
-      "             --image-cache as lutex tiles; --no-tiles to skip)        -> tiles/tileset.json\n"
+      "  tiles      3D Tiles for web map viewers, for a georeferenced model (--tile-faces as\n"
+      "             lutex tiles; --no-tiles to skip)                         -> tiles/tileset.json\n"
       "  report     an HTML page to judge the result                         -> report/index.html\n"
       "(and with --depth-maps a raycast stage -> raycast/). Stop it at any time, even with kill -9, and run it\n"
       "again: finished stages are skipped (W/lutex/run/STAGE.json records what each consumed: inputs by size\n"
@@ -52,6 +52,9 @@ int RunRunCommand(int argc, char** argv) {
   parser.AddFlag("report", &options.report, "Write the HTML report at the end (--no-report to skip).");
   AddThreadsOption(parser, &options.num_threads);
   AddMemoryLimitOption(parser, &options.memory_limit_bytes);
+  // How much the tiles and mosaic stages keep decoded, not what they make: not a stage setting, so changing
+  // it runs nothing again.
+  AddImageCacheOption(parser, {&options.tiles.picture_cache_bytes, &options.mosaic.picture_cache_bytes});
   parser.SetGroup("mesh");
   AddMeshStageOptions(parser, &options.mesh_options);
   parser.SetGroup("calibrate");
@@ -67,7 +70,6 @@ int RunRunCommand(int argc, char** argv) {
   parser.AddFlag("tiles", &options.make_tiles,
                  "Make 3D Tiles when the model is georeferenced (--no-tiles to skip).");
   AddTileFacesOption(parser, &options.tiles);
-  AddImageCacheOption(parser, {&options.tiles.picture_cache_bytes, &options.mosaic.picture_cache_bytes});
   if (!parser.Parse(argc, argv, 2)) return 0;
   parser.RunWithFlags([&] {
     for (const char* stage : {"mesh", "calibrate", "restore", "texture", "mosaic", "tiles"}) {

@@ -25,7 +25,7 @@ void WriteConfidenceMap(const cv::Mat& confidence, const fs::path& path) {
   WriteEncodedImage(confidence_bgr, path);
 }
 
-cv::Mat ReadConfidenceMap(const fs::path& path, const Camera& camera, const cv::Rect& window) {
+cv::Mat ReadEncodedConfidenceMap(const fs::path& path, const Camera& camera) {
   const cv::Mat encoded = cv::imread(path.string(), cv::IMREAD_COLOR);
   if (encoded.empty()) throw std::runtime_error(path.string() + ": cannot read the confidence map");
   if (encoded.cols != static_cast<int>(camera.width) || encoded.rows != static_cast<int>(camera.height)) {
@@ -33,10 +33,18 @@ cv::Mat ReadConfidenceMap(const fs::path& path, const Camera& camera, const cv::
                              std::to_string(encoded.rows) + " but its camera is " + std::to_string(camera.width) +
                              "x" + std::to_string(camera.height));
   }
+  return encoded;
+}
+
+cv::Mat DecodeConfidenceMap(const cv::Mat& encoded, const cv::Rect& window) {
   cv::Mat rgb;
   cv::cvtColor(window.empty() ? encoded : encoded(window), rgb, cv::COLOR_BGR2RGB);
   rgb.convertTo(rgb, CV_32FC3, 1.0 / 255.0);
   return rgb;
+}
+
+cv::Mat ReadConfidenceMap(const fs::path& path, const Camera& camera, const cv::Rect& window) {
+  return DecodeConfidenceMap(ReadEncodedConfidenceMap(path, camera), window);
 }
 
 }  // namespace lutex

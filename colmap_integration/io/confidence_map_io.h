@@ -19,9 +19,14 @@ std::filesystem::path ConfidenceMapPath(const std::filesystem::path& folder, con
 // Writes a CV_32FC3 RGB confidence in [0, 1] (temporary name, then rename).
 void WriteConfidenceMap(const cv::Mat& confidence, const std::filesystem::path& path);
 
-// Reads a confidence map as CV_32FC3 RGB in [0, 1]: the pixels of `window` (within the image), or of the
-// whole image when it is empty. Throws std::runtime_error naming the file when it cannot be read or is
-// not the camera's size.
+// Reads a confidence map as stored: 8-bit BGR, checked. Throws std::runtime_error naming the file when it
+// cannot be read or is not the camera's size.
+cv::Mat ReadEncodedConfidenceMap(const std::filesystem::path& path, const Camera& camera);
+
+// CV_32FC3 RGB in [0, 1] of a stored map's pixels in `window` (within it), or of all of it when empty.
+cv::Mat DecodeConfidenceMap(const cv::Mat& encoded, const cv::Rect& window = cv::Rect());
+
+// The two in one: a confidence map read and decoded, as above.
 cv::Mat ReadConfidenceMap(const std::filesystem::path& path, const Camera& camera, const cv::Rect& window = cv::Rect());
 
 }  // namespace lutex

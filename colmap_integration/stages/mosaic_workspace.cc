@@ -104,7 +104,8 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   MemoryEstimate baking_memory = TextureBakingMemory(options.ortho.baking, dive.mesh().faces.size());
-  baking_memory.Add("the decoded-picture cache", 1.0, static_cast<double>(options.picture_cache_bytes));
+  baking_memory.Add("the decoded-picture cache", 1.0,
+                    PictureCacheBytes(dive.model(), options.views.image_encoding, options.picture_cache_bytes));
   CheckStageMemory("mosaic", dive, options.ortho.baking.num_threads, kImageStageBytesPerPixel,
                    options.memory_limit_bytes, baking_memory);
   const auto start = std::chrono::steady_clock::now();
@@ -148,6 +149,7 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
                                      ortho.WriteTile(tile.col, tile.row, RgbaOf(tile.colour, options.encoding));
                                      if (dem) dem->WriteTile(tile.col, tile.row, tile.height);
                                    });
+  summary.files_decoded = found.pictures->decodes();
   if (summary.mosaic.seen_cells == 0) {
     throw std::runtime_error("mosaic: no image sees the mesh's surface from above; nothing to map");
   }
@@ -177,7 +179,8 @@ void PrintMosaicSummary(std::ostream& out, const MosaicSummary& summary) {
   const double cells = double(std::max<std::size_t>(mosaic.num_cells, 1));
   out << std::setprecision(1) << "  cells: " << 100.0 * double(mosaic.surface_cells) / cells << " % over the surface, "
       << 100.0 * double(mosaic.seen_cells) / cells << " % seen (" << std::setprecision(2) << mosaic.mean_samples_per_cell
-      << " views per cell); " << mosaic.num_tiles << " tile(s), " << mosaic.tile_view_reads << " image reads\n";
+      << " views per cell); " << mosaic.num_tiles << " tile(s), " << mosaic.tile_view_reads << " image reads, " << summary.files_decoded
+      << " images and confidence maps decoded (the rest came from --image-cache)\n";
   out << "  seam levelling: " << DescribeSeamLevelling(mosaic.levelling) << "\n";
   out << std::setprecision(1) << "  time: visibility, view selection and seam levelling " << mosaic.seconds_selection << " s, tiles "
       << mosaic.seconds_tiles << " s\n";

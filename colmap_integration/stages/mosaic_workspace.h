@@ -40,9 +40,9 @@ struct MosaicOptions {
   // available memory. The estimate counts the fusion's budget (ortho.baking.fusion) and the faces'
   // tables as parts.
   std::size_t memory_limit_bytes = 0;
-  // Decoded pictures kept for the next tiles (views.picture_cache_bytes): a view is read once per tile of
-  // the grid that sees it, and the tiles, done row by row, see mostly the same views as their neighbours
-  // (kDefaultPictureCacheBytes). 0: none.
+  // Decoded pictures and confidence maps kept for the next tiles (views.picture_cache_bytes): a view is
+  // read once per tile of the grid that sees it, and the tiles, done row by row, see mostly the same
+  // views as their neighbours (kDefaultPictureCacheBytes). 0: none.
   std::size_t picture_cache_bytes = kDefaultPictureCacheBytes;
   void Check() const;
 };
@@ -58,6 +58,8 @@ struct MosaicSummary {
   std::filesystem::path images;
   std::filesystem::path confidence;
   OrthoMosaicSummary mosaic;
+  // Images and confidence maps decoded over all tiles; the other reads came from the image cache.
+  std::size_t files_decoded = 0;
   double seconds = 0.0;
 };
 

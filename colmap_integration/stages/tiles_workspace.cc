@@ -192,7 +192,8 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   MemoryEstimate baking_memory = TextureBakingMemory(options.baking, dive.mesh().faces.size());
-  baking_memory.Add("the decoded-picture cache", 1.0, static_cast<double>(options.picture_cache_bytes));
+  baking_memory.Add("the decoded-picture cache", 1.0,
+                    PictureCacheBytes(dive.model(), options.views.image_encoding, options.picture_cache_bytes));
   CheckStageMemory("tiles", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
                    baking_memory);
   const auto start = std::chrono::steady_clock::now();

@@ -49,8 +49,8 @@ struct TilesOptions {
   std::string up_axis = "auto";  // as for `lutex texture`
   GeoreferenceOptions georeference;
   std::size_t memory_limit_bytes = 0;  // 0: the machine's available memory (stage_memory.h)
-  // Decoded pictures kept for the next tiles (views.picture_cache_bytes): a view is read once per tile
-  // that sees it, and neighbouring tiles see mostly the same views (kDefaultPictureCacheBytes). 0: none.
+  // Decoded pictures and confidence maps kept for the next tiles (views.picture_cache_bytes): a view is
+  // read once per tile that sees it, and neighbouring tiles see mostly the same views (kDefaultPictureCacheBytes). 0: none.
   std::size_t picture_cache_bytes = kDefaultPictureCacheBytes;
   void Check() const;
 };

@@ -1,5 +1,6 @@
 #include "colmap_integration/stages/workspace_views.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "colmap_integration/io/confidence_map_io.h"
@@ -52,10 +53,18 @@ WorkspaceViews FindWorkspaceViews(const Workspace& workspace, const SparseModel&
   return found;
 }
 
+namespace {
+
+// The cache's keys: a view's picture and its confidence map.
+std::size_t PictureKey(std::size_t view) { return 2 * view; }
+std::size_t ConfidenceKey(std::size_t view) { return 2 * view + 1; }
+
+}  // namespace
+
 ViewImageSource WorkspaceViews::Source() const {
   ViewImageSource source;
   source.linear_rgb = [this](std::size_t v, const cv::Rect& window) {
-    const cv::Mat picture = pictures->Get(v, [this, v] {
+    const cv::Mat picture = pictures->Get(PictureKey(v), [this, v] {
       cv::Mat read = ReadEncodedPicture(image_paths[v], image_encoding);
       ExpectCameraSize(image_paths[v], read.cols, read.rows, static_cast<int>(views[v].camera.width),
                        static_cast<int>(views[v].camera.height));
@@ -63,13 +72,28 @@ ViewImageSource WorkspaceViews::Source() const {
     });
     return DecodeLinearImage(window.empty() ? picture : picture(window), image_encoding);
   };
-  source.is_held = [this](std::size_t v) { return pictures->Holds(v); };
+  source.is_held = [this](std::size_t v) {
+    return pictures->Holds(PictureKey(v)) && (confidence_paths.empty() || pictures->Holds(ConfidenceKey(v)));
+  };
   if (!confidence_paths.empty()) {
     source.confidence = [this](std::size_t v, const cv::Rect& window) {
-      return ReadConfidenceMap(confidence_paths[v], views[v].camera, window);
+      const cv::Mat encoded = pictures->Get(
+          ConfidenceKey(v), [this, v] { return ReadEncodedConfidenceMap(confidence_paths[v], views[v].camera); });
+      return DecodeConfidenceMap(encoded, window);
     };
   }
   return source;
+}
+
+double PictureCacheBytes(const SparseModel& model, ImageEncoding encoding, std::size_t budget_bytes) {
+  const double picture_bytes_per_pixel = encoding == ImageEncoding::kSrgb8 ? 3.0 : encoding == ImageEncoding::kLinear16 ? 6.0 : 12.0;
+  const double confidence_bytes_per_pixel = 3.0;
+  double all_bytes = 0.0;
+  for (const auto& [id, image] : model.images) {
+    const Camera& camera = model.cameras.at(image.camera_id);
+    all_bytes += double(camera.width) * double(camera.height) * (picture_bytes_per_pixel + confidence_bytes_per_pixel);
+  }
+  return std::min(double(budget_bytes), all_bytes);
 }
 
 InputsAndOutputs ViewStageInputs(const Workspace& workspace, const std::filesystem::path& mesh,

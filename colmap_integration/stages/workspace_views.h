@@ -11,7 +11,8 @@
 //                view selection and the fusion then trust each pixel as much as the restoration did.
 //
 // A stage that reads a view many times (lutex tiles and mosaic: once per tile that sees it) keeps the decoded
-// pictures of the most recently read views within `picture_cache_bytes` (lib/image/picture_cache.h).
+// pictures and confidence maps (as stored: 8-bit or 16-bit) of the most recently read views within
+// `picture_cache_bytes` (lib/image/picture_cache.h).
 
 #include <cstddef>
 #include <filesystem>
@@ -52,6 +53,11 @@ struct WorkspaceViews {
   // Reads a view's image (checked against its camera's size) and confidence map. Refers to this object.
   ViewImageSource Source() const;
 };
+
+// What the decoded-picture cache can come to for `model`'s views: `budget_bytes`, or less when every view's
+// picture (of `encoding`) and confidence map fit in it. For memory estimates: a small dive's stage is not
+// charged a budget it cannot fill.
+double PictureCacheBytes(const SparseModel& model, ImageEncoding encoding, std::size_t budget_bytes);
 
 // Throws std::runtime_error naming the folder, image or map that is missing. `stage` starts the warning
 // ("texture", "mosaic").

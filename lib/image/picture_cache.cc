@@ -16,6 +16,7 @@ cv::Mat PictureCache::Get(std::size_t key, const std::function<cv::Mat()>& decod
       entries_.splice(entries_.begin(), entries_, found->second);
       return found->second->second;
     }
+    ++decodes_;
   }
   cv::Mat picture = decode();
   const std::size_t bytes = PictureBytes(picture);
@@ -36,6 +37,11 @@ cv::Mat PictureCache::Get(std::size_t key, const std::function<cv::Mat()>& decod
 bool PictureCache::Holds(std::size_t key) const {
   std::lock_guard<std::mutex> lock(mutex_);
   return by_key_.count(key) != 0;
+}
+
+std::size_t PictureCache::decodes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return decodes_;
 }
 
 std::size_t PictureCache::held_bytes() const {

@@ -33,6 +33,8 @@ class PictureCache {
 
   std::size_t held_bytes() const;
   std::size_t capacity_bytes() const { return capacity_bytes_; }
+  // How many Gets decoded (the others were served from the cache).
+  std::size_t decodes() const;
 
  private:
   using Entry = std::pair<std::size_t, cv::Mat>;  // key, picture; most recently used first
@@ -42,6 +44,7 @@ class PictureCache {
   std::list<Entry> entries_;
   std::unordered_map<std::size_t, std::list<Entry>::iterator> by_key_;
   std::size_t held_bytes_ = 0;
+  std::size_t decodes_ = 0;
 };
 
 }  // namespace lutex

@@ -39,13 +39,16 @@ double MaxDifference(const cv::Mat& a, const cv::Mat& b) {
 }
 
 // A window of a view, read through the workspace's source, is the same window of the whole image read
-// and linearised on its own, for 8-bit sRGB and 16-bit linear files, and so is the confidence map's.
+// and linearised on its own, for 8-bit sRGB and 16-bit linear files, and so is the confidence map's; with
+// a picture cache, the image and the map are each decoded once for all the reads.
 TEST(WorkspaceViews, AWindowOfAViewIsThatWindowOfTheWholeImage) {
   testing::TempDir dir;
   constexpr int kWidth = 64, kHeight = 48;
+  for (const std::size_t cache_bytes : {std::size_t{0}, std::size_t{1} << 20})
   for (const ImageEncoding encoding : {ImageEncoding::kSrgb8, ImageEncoding::kLinear16}) {
-    const std::string name = ImageEncodingName(encoding);
+    const std::string name = ImageEncodingName(encoding) + (cache_bytes > 0 ? " cached" : "");
     WorkspaceViews found;
+    found.pictures = std::make_shared<PictureCache>(cache_bytes);
     found.image_encoding = encoding;
     found.views.push_back({name, Camera::Pinhole(1, kWidth, kHeight, 50.0, 50.0), Rigid3d()});
     found.image_paths.push_back(dir.path() / (name + ".png"));
@@ -63,7 +66,23 @@ TEST(WorkspaceViews, AWindowOfAViewIsThatWindowOfTheWholeImage) {
       EXPECT_EQ(MaxDifference(LoadViewConfidence(source, found.views, 0, window), whole_confidence(window)), 0.0)
           << name;
     }
+    EXPECT_EQ(found.pictures->decodes(), cache_bytes > 0 ? 2u : 7u) << name;
+    EXPECT_EQ(source.is_held(0), cache_bytes > 0) << name;
   }
+}
+
+// The memory check counts the cache's budget, or what every view's picture and confidence map come to
+// when that is less.
+TEST(WorkspaceViews, ThePictureCacheIsCountedAtItsBudgetOrAtWhatTheViewsComeTo) {
+  SparseModel model;
+  model.cameras.emplace(1, Camera::Pinhole(1, 100, 50, 50.0, 50.0));
+  for (std::uint32_t id = 1; id <= 4; ++id) model.images[id].camera_id = 1;
+  // 4 views of 5000 pixels: 3 bytes a pixel for an 8-bit picture, 6 for 16 bits, 12 for float; 3 for the map.
+  EXPECT_EQ(PictureCacheBytes(model, ImageEncoding::kSrgb8, 1 << 20), 4 * 5000 * (3 + 3));
+  EXPECT_EQ(PictureCacheBytes(model, ImageEncoding::kLinear16, 1 << 20), 4 * 5000 * (6 + 3));
+  EXPECT_EQ(PictureCacheBytes(model, ImageEncoding::kFloat, 1 << 20), 4 * 5000 * (12 + 3));
+  EXPECT_EQ(PictureCacheBytes(model, ImageEncoding::kSrgb8, 100000), 100000);
+  EXPECT_EQ(PictureCacheBytes(model, ImageEncoding::kSrgb8, 0), 0);
 }
 
 TEST(WorkspaceViews, AnImageOfAnotherSizeIsAnErrorNamingTheFile) {

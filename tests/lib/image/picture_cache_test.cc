@@ -36,6 +36,7 @@ TEST(PictureCache, KeepsTheMostRecentlyUsedWithinItsBudget) {
   EXPECT_EQ(cache.held_bytes(), 90000u);
   EXPECT_EQ(get(2).at<cv::Vec3b>(0, 0)[0], 2);  // read again
   EXPECT_EQ(decodes, 5);
+  EXPECT_EQ(cache.decodes(), 5u);
   EXPECT_FALSE(cache.Holds(3));
 }
 
