@@ -37,11 +37,14 @@ cv::Mat LoadViewConfidence(const ViewImageSource& source, const std::vector<Text
   return confidence;
 }
 
-const CameraRays& ViewRaycaster::RaysFor(const Camera& camera) const {
+const CameraRays& ViewRaycaster::RaysFor(const Camera& camera, int stride) const {
   std::lock_guard<std::mutex> lock(mutex_);
-  std::unique_ptr<CameraRays>& rays = rays_by_camera_[camera.camera_id];
-  if (!rays) rays = std::make_unique<CameraRays>(camera, 1);
-  return *rays;
+  std::unique_ptr<CameraRays>& full = rays_by_camera_[{camera.camera_id, 1}];
+  if (!full) full = std::make_unique<CameraRays>(camera, 1);
+  if (stride == 1) return *full;
+  std::unique_ptr<CameraRays>& strided = rays_by_camera_[{camera.camera_id, stride}];
+  if (!strided) strided = std::make_unique<CameraRays>(CameraRays::Strided(*full, stride));
+  return *strided;
 }
 
 void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps, const cv::Rect& window) const {
@@ -50,6 +53,13 @@ void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps, const cv
   options.num_threads = 1;
   options.window = window;
   scene_.Render(RaysFor(view.camera), view.cam_from_world, options, maps);
+}
+
+void ViewRaycaster::RenderStrided(const TextureView& view, int stride, GeometryMaps* maps) const {
+  GeometryMapsOptions options;
+  options.normal = false;
+  options.num_threads = 1;
+  scene_.Render(RaysFor(view.camera, stride), view.cam_from_world, options, maps);
 }
 
 void ViewRaycaster::CastDepths(const TextureView& view, const std::vector<cv::Point>& pixels,

@@ -67,15 +67,20 @@ class ViewRaycaster {
   // memory per view). One thread: views run in parallel.
   void Render(const TextureView& view, GeometryMaps* maps, const cv::Rect& window = cv::Rect()) const;
 
+  // Depth and face id of every `stride`-th pixel of `view` in each direction (CameraRays::Strided: maps
+  // of ceil(width / stride) x ceil(height / stride)). `stride` 1 is Render's whole view.
+  void RenderStrided(const TextureView& view, int stride, GeometryMaps* maps) const;
+
   // Depth of each of `pixels` of `view` (RaycastScene::CastDepths), into `depths`. One thread.
   void CastDepths(const TextureView& view, const std::vector<cv::Point>& pixels, std::vector<float>* depths) const;
 
  private:
-  const CameraRays& RaysFor(const Camera& camera) const;
+  const CameraRays& RaysFor(const Camera& camera, int stride = 1) const;
 
   const RaycastScene& scene_;
   mutable std::mutex mutex_;
-  mutable std::map<std::uint32_t, std::unique_ptr<CameraRays>> rays_by_camera_;
+  // By camera id and stride.
+  mutable std::map<std::pair<std::uint32_t, int>, std::unique_ptr<CameraRays>> rays_by_camera_;
 };
 
 }  // namespace lutex

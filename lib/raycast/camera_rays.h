@@ -5,6 +5,7 @@
 // computes the table once per camera and reuses it for every pose. Memory: 12 bytes per pixel
 // (144 MB for 12 MP).
 
+#include <algorithm>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,16 +20,30 @@ class CameraRays {
   // 90 degrees for fisheye models) get a NaN direction and never hit anything.
   CameraRays(const Camera& camera, int num_threads = 0);
 
+  // A coarse table of `full` (a table of every pixel): one ray per `stride` x `stride` block of its pixels, the ray of the block's
+  // pixel (stride col + stride / 2, stride row + stride / 2) (clamped to the image), in a table of
+  // ceil(width / stride) x ceil(height / stride). A ray cast with it visits every stride-th pixel in each
+  // direction. camera() stays the full camera.
+  static CameraRays Strided(const CameraRays& full, int stride);
+
   const Camera& camera() const { return camera_; }
-  int width() const { return static_cast<int>(camera_.width); }
-  int height() const { return static_cast<int>(camera_.height); }
-  // Unit direction of the ray through pixel (col, row), camera frame.
+  // The table's size (the camera's, but for a strided table).
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int stride() const { return stride_; }
+  // The full image's pixel whose ray is the table's (col, row).
+  int FullCol(int col) const { return std::min(stride_ * col + stride_ / 2, static_cast<int>(camera_.width) - 1); }
+  int FullRow(int row) const { return std::min(stride_ * row + stride_ / 2, static_cast<int>(camera_.height) - 1); }
+  // Unit direction of the ray through the table's pixel (col, row), camera frame.
   const Eigen::Vector3f& Direction(int col, int row) const {
-    return directions_[static_cast<std::size_t>(row) * camera_.width + col];
+    return directions_[static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(col)];
   }
 
  private:
+  CameraRays() = default;
+
   Camera camera_;
+  int width_ = 0, height_ = 0, stride_ = 1;
   std::vector<Eigen::Vector3f> directions_;
 };
 

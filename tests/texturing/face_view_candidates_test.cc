@@ -1,0 +1,93 @@
+#include "texturing/face_view_candidates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "lib/geometry/look_at.h"
+#include "lib/geometry/mesh_primitives.h"
+#include "lib/raycast/raycast_scene.h"
+
+namespace lutex {
+namespace {
+
+// A seafloor of 5 cm cells (two faces each) with a boulder 0.35 m high that hides part of the floor from
+// the oblique views, seen by nine cameras of 640 x 480 from 1.5 m: faces of about 140 pixels.
+struct Scene {
+  Mesh mesh = MakeHeightFieldMesh(
+      [](double x, double y) {
+        return 0.35 * std::exp(-((x - 0.2) * (x - 0.2) + (y - 0.1) * (y - 0.1)) / (2 * 0.15 * 0.15)) +
+               0.03 * std::sin(3.0 * x) * std::cos(2.0 * y);
+      },
+      -1.0, 1.0, -1.0, 1.0, 40, 40);
+  std::vector<TextureView> views;
+  Scene() {
+    const Camera camera = Camera::Pinhole(1, 640, 480, 500.0, 500.0);
+    int index = 0;
+    for (double y : {-0.6, 0.0, 0.6}) {
+      for (double x : {-0.6, 0.0, 0.6}) {
+        // Each camera looks at a point between itself and the centre: the outer ones obliquely.
+        const Eigen::Vector3d centre(x, y, 1.5), target(0.4 * x, 0.4 * y, 0.0);
+        views.push_back({"view_" + std::to_string(index++), camera,
+                         CamFromWorldLookingAt(centre, (target - centre).normalized(), Eigen::Vector3d::UnitY())});
+      }
+    }
+  }
+};
+
+// Casting every 3rd or 4th pixel of views whose faces cover about 140 pixels finds the same views for every face
+// as casting every pixel, with nearly the same quality: the exact cast is the truth here.
+TEST(FaceViewCandidates, ACoarseCastOfLargeFacesFindsTheViewsAndQualitiesOfTheFullCast) {
+  const Scene scene;
+  const FaceAdjacency adjacency(scene.mesh);
+  const RaycastScene raycast_scene(scene.mesh);
+  const ViewRaycaster raycaster(raycast_scene);
+  const ViewImageSource source;
+  FaceViewCandidatesOptions options;
+  for (const TextureView& view : scene.views) EXPECT_GE(VisibilityStride(scene.mesh, view, options.rays_per_face), 3);
+  const FaceViewCandidates coarse = FindFaceViewCandidates(scene.mesh, adjacency, scene.views, raycaster, source, options);
+  options.rays_per_face = 0;
+  for (const TextureView& view : scene.views) EXPECT_EQ(VisibilityStride(scene.mesh, view, 0), 1);
+  const FaceViewCandidates full = FindFaceViewCandidates(scene.mesh, adjacency, scene.views, raycaster, source, options);
+
+  std::size_t same_best = 0;
+  double worst_missed = 0.0;  // the best quality of a view the coarse cast missed
+  std::vector<double> quality_errors, best_qualities;
+  for (std::uint32_t face = 0; face < full.NumFaces(); ++face) {
+    if (full.NumViews(face) == 0) continue;
+    if (coarse.NumViews(face) > 0 && coarse.begin(face)->view == full.begin(face)->view) ++same_best;
+    best_qualities.push_back(full.begin(face)->quality);
+    for (const FaceViewCandidate* c = full.begin(face); c != full.end(face); ++c) {
+      const FaceViewCandidate* match = std::find_if(coarse.begin(face), coarse.end(face),
+                                                    [&](const FaceViewCandidate& other) { return other.view == c->view; });
+      if (match == coarse.end(face)) {
+        // Missed, unless the coarse cast kept as many views as it may and another took this one's place.
+        if (coarse.NumViews(face) < std::size_t(options.max_views_per_face)) worst_missed = std::max(worst_missed, double(c->quality));
+      } else {
+        quality_errors.push_back(std::abs(match->quality - c->quality) / c->quality);
+      }
+    }
+  }
+  const double faces = double(full.NumFaces());
+  std::sort(quality_errors.begin(), quality_errors.end());
+  const double median_error = quality_errors[quality_errors.size() / 2];
+  const double p95_error = quality_errors[quality_errors.size() * 95 / 100];
+  std::sort(best_qualities.begin(), best_qualities.end());
+  const double worst_missed_share = worst_missed / best_qualities[best_qualities.size() / 2];
+  std::printf("coarse cast against full: same best view for %.2f %% of %zu faces; quality error median %.3f, p95 "
+              "%.3f; views missed at most %.3f of the median face's best quality\n",
+              100.0 * double(same_best) / faces, full.NumFaces(), median_error, p95_error, worst_missed_share);
+  // Measured: 98.7 %, 0.000, 0.045; the views missed see slivers of their faces (at the frames' edges,
+  // beside the boulder), of at most 0.22 of the median face's best quality: a face a fifth of which is
+  // seen can fall between the coarse rays.
+  EXPECT_GE(double(same_best), 0.97 * faces);
+  EXPECT_LE(median_error, 0.01);
+  EXPECT_LE(p95_error, 0.1);
+  EXPECT_LE(worst_missed_share, 0.3);
+}
+
+}  // namespace
+}  // namespace lutex
