@@ -146,24 +146,23 @@ FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency&
   ParallelForOnWorkers(views.size(), options.num_threads, [&](std::size_t view_index, int worker) {
     const TextureView& view = views[view_index];
     GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
-    // The maps hold every stride-th pixel: map (col, row) is the image's pixel (full(col), full(row)).
+    // The maps hold every stride-th pixel: map (col, row) is the image's pixel (StridedPixel(col), StridedPixel(row)).
     const int stride = VisibilityStride(mesh, view, options.rays_per_face);
     ++views_by_stride[static_cast<std::size_t>(stride)];
     raycaster.RenderStrided(view, stride, &maps);
     const int width = static_cast<int>(view.camera.width), height = static_cast<int>(view.camera.height);
-    const auto full = [stride](int index, int size) { return std::min(stride * index + stride / 2, size - 1); };
     const cv::Mat confidence = LoadViewConfidence(source, views, view_index);
     thread_local FaceHits face_hits;
     face_hits.Resize(num_faces);
     face_hits.Clear();
     for (int row = 0; row < maps.face_id.rows; ++row) {
       const int* face_row = maps.face_id.ptr<int>(row);
-      const cv::Vec3f* confidence_row = confidence.empty() ? nullptr : confidence.ptr<cv::Vec3f>(full(row, height));
+      const cv::Vec3f* confidence_row = confidence.empty() ? nullptr : confidence.ptr<cv::Vec3f>(StridedPixel(row, stride, height));
       for (int col = 0; col < maps.face_id.cols; ++col) {
         const int face = face_row[col];
         if (face < 0) continue;
         if (face_hits.hits[face]++ == 0) face_hits.touched.push_back(static_cast<std::uint32_t>(face));
-        const cv::Vec3f* value = confidence_row ? confidence_row + full(col, width) : nullptr;
+        const cv::Vec3f* value = confidence_row ? confidence_row + StridedPixel(col, stride, width) : nullptr;
         face_hits.confidence_sum[face] += value ? ((*value)[0] + (*value)[1] + (*value)[2]) / 3.0f : 1.0f;
       }
     }

@@ -47,19 +47,25 @@ const CameraRays& ViewRaycaster::RaysFor(const Camera& camera, int stride) const
   return *strided;
 }
 
-void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps, const cv::Rect& window) const {
+namespace {
+
+// Depth and face id of the pixels of `window` (all when empty), on the calling thread.
+GeometryMapsOptions DepthAndFaceIds(const cv::Rect& window) {
   GeometryMapsOptions options;
   options.normal = false;
   options.num_threads = 1;
   options.window = window;
-  scene_.Render(RaysFor(view.camera), view.cam_from_world, options, maps);
+  return options;
+}
+
+}  // namespace
+
+void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps, const cv::Rect& window) const {
+  scene_.Render(RaysFor(view.camera), view.cam_from_world, DepthAndFaceIds(window), maps);
 }
 
 void ViewRaycaster::RenderStrided(const TextureView& view, int stride, GeometryMaps* maps) const {
-  GeometryMapsOptions options;
-  options.normal = false;
-  options.num_threads = 1;
-  scene_.Render(RaysFor(view.camera, stride), view.cam_from_world, options, maps);
+  scene_.Render(RaysFor(view.camera, stride), view.cam_from_world, DepthAndFaceIds(cv::Rect()), maps);
 }
 
 void ViewRaycaster::CastDepths(const TextureView& view, const std::vector<cv::Point>& pixels,

@@ -36,8 +36,8 @@ CameraRays CameraRays::Strided(const CameraRays& full, int stride) {
   strided.directions_.reserve(static_cast<std::size_t>(strided.width_) * static_cast<std::size_t>(strided.height_));
   for (int row = 0; row < strided.height_; ++row) {
     for (int col = 0; col < strided.width_; ++col) {
-      strided.directions_.push_back(full.Direction(std::min(stride * col + stride / 2, full.width_ - 1),
-                                                   std::min(stride * row + stride / 2, full.height_ - 1)));
+      strided.directions_.push_back(
+          full.Direction(StridedPixel(col, stride, full.width_), StridedPixel(row, stride, full.height_)));
     }
   }
   return strided;

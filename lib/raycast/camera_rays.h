@@ -14,14 +14,18 @@
 
 namespace lutex {
 
+// The pixel (column or row) of an image `size` pixels across whose ray a table strided by `stride` holds
+// at `index`: the centre pixel of its block, stride index + stride / 2, clamped to the image.
+inline int StridedPixel(int index, int stride, int size) { return std::min(stride * index + stride / 2, size - 1); }
+
 class CameraRays {
  public:
   // Rays through pixel centres (col + 0.5, row + 0.5). Pixels whose ray cannot be represented (beyond
   // 90 degrees for fisheye models) get a NaN direction and never hit anything.
   CameraRays(const Camera& camera, int num_threads = 0);
 
-  // A coarse table of `full` (a table of every pixel): one ray per `stride` x `stride` block of its pixels, the ray of the block's
-  // pixel (stride col + stride / 2, stride row + stride / 2) (clamped to the image), in a table of
+  // A coarse table of `full` (a table of every pixel): one ray per `stride` x `stride` block of its
+  // pixels, the ray of the block's pixel (StridedPixel(col), StridedPixel(row)), in a table of
   // ceil(width / stride) x ceil(height / stride). A ray cast with it visits every stride-th pixel in each
   // direction. camera() stays the full camera.
   static CameraRays Strided(const CameraRays& full, int stride);
@@ -30,10 +34,6 @@ class CameraRays {
   // The table's size (the camera's, but for a strided table).
   int width() const { return width_; }
   int height() const { return height_; }
-  int stride() const { return stride_; }
-  // The full image's pixel whose ray is the table's (col, row).
-  int FullCol(int col) const { return std::min(stride_ * col + stride_ / 2, static_cast<int>(camera_.width) - 1); }
-  int FullRow(int row) const { return std::min(stride_ * row + stride_ / 2, static_cast<int>(camera_.height) - 1); }
   // Unit direction of the ray through the table's pixel (col, row), camera frame.
   const Eigen::Vector3f& Direction(int col, int row) const {
     return directions_[static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(col)];

@@ -28,14 +28,20 @@ namespace fs = std::filesystem;
 
 const fs::path kExamples = fs::path(LUTEX_SOURCE_DIR) / "examples";
 
-// The sweep's coastal water (scripts/water_rig_sweep.sh), the coastal preset's: b 0.35 - 0.40 per m.
-const char* kCoastalWater = R"({"absorption": [0.45, 0.12, 0.25], "scattering": [0.35, 0.4, 0.38], "g": 0.9})";
+// The coastal preset's water (b 0.35 - 0.40 per m), as the sweep's coastal dives have it
+// (scripts/water_rig_sweep.sh).
+nlohmann::json CoastalWaterJson() {
+  const Water water = *WaterPreset("coastal");
+  return {{"absorption", {water.absorption.x(), water.absorption.y(), water.absorption.z()}},
+          {"scattering", {water.scattering.x(), water.scattering.y(), water.scattering.z()}},
+          {"g", water.anisotropy_g}};
+}
 
 // The example scene `source` in coastal water with forward scattering rendered, at 320 x 240, keeping
 // every `keep_every`-th listed pose, simulated into `output`.
 fs::path SimulateWithForwardScatter(const fs::path& source, const fs::path& output, std::size_t keep_every) {
   nlohmann::json scene = nlohmann::json::parse(std::ifstream(source));
-  scene["water"] = nlohmann::json::parse(kCoastalWater);
+  scene["water"] = CoastalWaterJson();
   scene["simulator"]["forward_scatter"] = true;
   scene["camera"] = {{"model", "PINHOLE"}, {"width", 320}, {"height", 240}, {"params", {160, 160, 160, 120}}};
   if (scene["mesh"].is_string()) scene["mesh"] = (source.parent_path() / scene["mesh"].get<std::string>()).string();
