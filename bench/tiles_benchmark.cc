@@ -4,7 +4,11 @@
 // against plain decoding of the same images in the same run, and the tile count. What tiling promises:
 // peak memory that does not grow with the area. Not a test.
 //
-//   tiles_benchmark [--images 50] [--tile-faces 100000] [--num-threads 0]
+//   tiles_benchmark [--images 50] [--tile-faces 100000] [--image-cache MiB] [--num-threads 0]
+//
+// --image-cache sets `lutex tiles`' decoded-picture cache (default: the command's). The cache is a budget:
+// it fills up to it and no further, so with the default the small images of the 1x area all fit and the
+// 4x area's fill it more; a budget the 1x area already fills shows what grows with the area besides it.
 //
 // At the defaults the largest area is the texture benchmark's dive: 20 x 12.5 m, 1.25 M faces, 200 images
 // of 640 x 480.
@@ -51,7 +55,7 @@ void SimulateArea(const fs::path& root, int width, int height, int images_per_li
       num_threads);
 }
 
-Measurement Tiles(const fs::path& workspace, std::size_t tile_faces, int num_threads) {
+Measurement Tiles(const fs::path& workspace, std::size_t tile_faces, std::size_t cache_bytes, int num_threads) {
   using namespace lutex;
   TilesOptions options;
   options.workspace = workspace;
@@ -59,6 +63,7 @@ Measurement Tiles(const fs::path& workspace, std::size_t tile_faces, int num_thr
   options.views.images = workspace / "images";
   options.output = workspace.parent_path() / "tiles";
   options.tree.max_faces = tile_faces;
+  options.picture_cache_bytes = cache_bytes;
   options.baking.num_threads = num_threads;
   options.georeference.enu_origin = "54.32,10.14,-20";
   const auto start = std::chrono::steady_clock::now();
@@ -86,13 +91,15 @@ int main(int argc, char** argv) {
   using namespace lutex;
   const int images = bench::IntOption(argc, argv, "--images", 50);
   const int tile_faces = bench::IntOption(argc, argv, "--tile-faces", 100000);
+  const int cache_mib = bench::IntOption(argc, argv, "--image-cache", int(kDefaultPictureCacheBytes >> 20));
   const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
   SetLogLevel(LogLevel::kWarning);
   const fs::path root = fs::temp_directory_path() / "lutex_tiles_benchmark";
   fs::remove_all(root);
   const int images_per_line = std::max(1, images / 4);
-  std::printf("tiles benchmark: %d threads, %d faces a tile; areas 1x, 2x, 4x of 10 x 6.25 m (312 k faces, %d images)\n",
-              num_threads, tile_faces, 4 * images_per_line);
+  std::printf("tiles benchmark: %d threads, %d faces a tile, image cache %d MiB; areas 1x, 2x, 4x of 10 x 6.25 m "
+              "(312 k faces, %d images)\n",
+              num_threads, tile_faces, cache_mib, 4 * images_per_line);
   std::printf("%5s %8s %7s %11s %10s %7s %11s %12s %10s %11s\n", "area", "Mfaces", "images", "decode [s]",
               "tiles [s]", "ratio", "tiles [MiB]", "texture [s]", "ratio", "tex. [MiB]");
   const struct {
@@ -105,7 +112,7 @@ int main(int argc, char** argv) {
       return Measurement{};
     });
     const double decode = bench::DecodeSeconds(dive / "W", num_threads);
-    const Measurement tiles = bench::InChild<Measurement>([&] { return Tiles(dive / "W", tile_faces, num_threads); });
+    const Measurement tiles = bench::InChild<Measurement>([&] { return Tiles(dive / "W", tile_faces, std::size_t(cache_mib) << 20, num_threads); });
     const Measurement texture = bench::InChild<Measurement>([&] { return Texture(dive / "W", num_threads); });
     std::printf("%4dx %8.2f %7d %11.2f %10.2f %7.1f %11.0f %12.2f %10.1f %11.0f   (%0.f tiles)\n", area.factor,
                 tiles.faces / 1e6, 4 * images_per_line * area.factor, decode, tiles.seconds, tiles.seconds / decode,

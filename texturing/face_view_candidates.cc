@@ -114,19 +114,49 @@ int VisibilityStride(const Mesh& mesh, const TextureView& view, int rays_per_fac
 }
 
 FaceViewCandidates::FaceViewCandidates(std::size_t num_faces, int max_views_per_face)
-    : stride_(static_cast<std::size_t>(max_views_per_face)), slots_(num_faces * stride_), counts_(num_faces, 0) {}
+    : stride_(static_cast<std::size_t>(max_views_per_face)),
+      views_(num_faces * stride_),
+      qualities_(num_faces * stride_),
+      counts_(num_faces, 0) {}
+
+float FaceViewCandidates::Quality(std::uint32_t face, std::size_t i) const {
+  if (qualities_.empty() && !views_.empty()) throw std::logic_error("face view candidates: the qualities were dropped");
+  return qualities_[face * stride_ + i];
+}
+
+FaceViewCandidates FaceViewCandidates::Subset(const std::vector<std::uint32_t>& faces) const {
+  FaceViewCandidates subset(faces.size(), static_cast<int>(stride_));
+  if (qualities_.empty()) subset.DropQualities();
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const std::size_t from = faces[i] * stride_, count = counts_.at(faces[i]);
+    std::copy_n(views_.begin() + from, count, subset.views_.begin() + i * stride_);
+    if (!qualities_.empty()) std::copy_n(qualities_.begin() + from, count, subset.qualities_.begin() + i * stride_);
+    subset.counts_[i] = counts_[faces[i]];
+  }
+  return subset;
+}
+
+void FaceViewCandidates::DropQualities() {
+  qualities_.clear();
+  qualities_.shrink_to_fit();
+}
 
 void FaceViewCandidates::Offer(std::uint32_t face, const FaceViewCandidate& candidate) {
-  FaceViewCandidate* first = slots_.data() + face * stride_;
+  if (qualities_.empty() && !views_.empty()) throw std::logic_error("face view candidates: the qualities were dropped");
+  std::uint32_t* views = views_.data() + face * stride_;
+  float* qualities = qualities_.data() + face * stride_;
+  const auto at = [&](std::size_t i) { return FaceViewCandidate{views[i], qualities[i]}; };
   std::size_t count = counts_[face];
-  if (count == stride_ && !Better(candidate, first[count - 1])) return;
+  if (count == stride_ && !Better(candidate, at(count - 1))) return;
   if (count < stride_) ++count;
   std::size_t i = count - 1;
-  while (i > 0 && Better(candidate, first[i - 1])) {
-    first[i] = first[i - 1];
+  while (i > 0 && Better(candidate, at(i - 1))) {
+    views[i] = views[i - 1];
+    qualities[i] = qualities[i - 1];
     --i;
   }
-  first[i] = candidate;
+  views[i] = candidate.view;
+  qualities[i] = candidate.quality;
   counts_[face] = static_cast<std::uint8_t>(count);
 }
 

@@ -325,8 +325,9 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
       pass_charts.push_back({chart_begin, chart_end, num_samples});
       for (std::size_t t = chart_begin; t < chart_end;) {
         const std::uint32_t face = layout.texels[t].face;
-        for (const FaceViewCandidate* c = candidates.begin(face); c != candidates.end(face); ++c) {
-          faces_of_view[c->view].push_back({face, num_samples + (t - chart_begin)});
+        const std::uint32_t* face_views = candidates.Views(face);
+        for (std::size_t c = 0; c < candidates.NumViews(face); ++c) {
+          faces_of_view[face_views[c]].push_back({face, num_samples + (t - chart_begin)});
         }
         t = layout.face_ranges[face].second;
       }

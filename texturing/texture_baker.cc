@@ -83,6 +83,7 @@ ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const 
   start = std::chrono::steady_clock::now();
   chosen.selection = SelectViews(chosen.candidates, adjacency, options.selection);
   chosen.seconds_selection = SecondsSince(start);
+  chosen.candidates.DropQualities();
   TexelFusionOptions fusion = options.fusion;
   fusion.num_threads = options.num_threads;
   chosen.corrections = LevelSeams(mesh, adjacency, views, raycaster, source, chosen.candidates,
@@ -265,14 +266,9 @@ TexturedMesh BakeFaces(const Mesh& mesh, const std::vector<TextureView>& views, 
   TexturedMesh textured;
   textured.mesh = std::move(part.mesh);
   const FaceAdjacency adjacency(textured.mesh);
-  FaceViewCandidates candidates(faces.size(), options.visibility.max_views_per_face);
+  const FaceViewCandidates candidates = chosen.candidates.Subset(faces);
   std::vector<std::uint32_t> view_of_face(faces.size());
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    for (const FaceViewCandidate* c = chosen.candidates.begin(faces[i]); c != chosen.candidates.end(faces[i]); ++c) {
-      candidates.Offer(static_cast<std::uint32_t>(i), *c);
-    }
-    view_of_face[i] = labels[faces[i]];
-  }
+  for (std::size_t i = 0; i < faces.size(); ++i) view_of_face[i] = labels[faces[i]];
   BakeFusedFaces(textured.mesh, adjacency, views, raycaster, source, candidates, view_of_face, chosen.corrections,
                  source_vertex, options, /*show_progress=*/false, textured, summary);
   summary.num_views = views.size();

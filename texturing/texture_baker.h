@@ -85,7 +85,7 @@ struct TextureBakingResult {
 // the seam levelling's corrections. A tiled bake chooses once and bakes each tile's faces with BakeFaces,
 // so that labels, and the colours fused and levelled from them, agree across tile borders.
 struct ChosenViews {
-  FaceViewCandidates candidates;
+  FaceViewCandidates candidates;  // their views (the qualities are dropped once the views are chosen)
   ViewSelection selection;  // with the per-face labels
   SeamCorrections corrections;
   SeamLevellingSummary levelling;

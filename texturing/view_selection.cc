@@ -20,7 +20,7 @@ constexpr std::uint8_t kNoLabel = 255;
 bool IsView(std::uint32_t label) { return label < kInRegion; }
 
 double DataCost(const FaceViewCandidates& candidates, std::uint32_t f, std::size_t i, double max_data_cost) {
-  return std::min(max_data_cost, std::log(double(candidates.begin(f)[0].quality) / double(candidates.begin(f)[i].quality)));
+  return std::min(max_data_cost, std::log(double(candidates.Quality(f, 0)) / double(candidates.Quality(f, i))));
 }
 
 // One region's MRF, solved by belief propagation: its faces in ascending order (a face's local index is its
@@ -52,7 +52,7 @@ class Region {
       for (std::size_t l = 0; l < num_labels; ++l) {
         double cost = DataCost(candidates, f, l, options.max_data_cost);
         for (const std::uint32_t* n = adjacency.begin(f); n != adjacency.end(f); ++n) {
-          if (IsView(labels[*n]) && labels[*n] != candidates.begin(f)[l].view) cost += smoothness_;
+          if (IsView(labels[*n]) && labels[*n] != candidates.Views(f)[l]) cost += smoothness_;
         }
         data_.push_back(static_cast<float>(cost));
       }
@@ -81,7 +81,7 @@ class Region {
         std::uint8_t* same = same_view_label_.data() + message_offsets_[g] + slot * NumLabels(g);
         for (std::size_t lg = 0; lg < NumLabels(g); ++lg) {
           for (std::size_t l = 0; l < NumLabels(i); ++l) {
-            if (Views(i)[l].view == Views(g)[lg].view) same[lg] = static_cast<std::uint8_t>(l);
+            if (Views(i)[l] == Views(g)[lg]) same[lg] = static_cast<std::uint8_t>(l);
           }
         }
       }
@@ -108,7 +108,7 @@ class Region {
       // Converged when (almost) no label changes; a few faces may keep flipping between equal choices.
       if (iteration > 0 && double(changed) <= options.converged_fraction * num_faces) break;
     }
-    for (std::uint32_t i = 0; i < num_faces; ++i) labels[faces_[i]] = candidates_.begin(faces_[i])[label[i]].view;
+    for (std::uint32_t i = 0; i < num_faces; ++i) labels[faces_[i]] = candidates_.Views(faces_[i])[label[i]];
     return sweeps;
   }
 
@@ -118,7 +118,7 @@ class Region {
   }
   std::size_t NumLabels(std::uint32_t i) const { return data_offsets_[i + 1] - data_offsets_[i]; }
   std::size_t Degree(std::uint32_t i) const { return neighbour_offsets_[i + 1] - neighbour_offsets_[i]; }
-  const FaceViewCandidate* Views(std::uint32_t i) const { return candidates_.begin(faces_[i]); }
+  const std::uint32_t* Views(std::uint32_t i) const { return candidates_.Views(faces_[i]); }
 
   // Sends every message of face i to its neighbours (using the messages i has received so far).
   void SendMessages(std::uint32_t i, std::vector<float>& belief) {
@@ -185,7 +185,7 @@ void AddEnergy(const FaceViewCandidates& candidates, const FaceAdjacency& adjace
     const std::size_t l = label_index(f);
     *data_cost += DataCost(candidates, f, l, options.max_data_cost);
     for (const std::uint32_t* n = adjacency.begin(f); n != adjacency.end(f); ++n) {
-      if (*n > f && candidates.NumViews(*n) > 0 && candidates.begin(f)[l].view != candidates.begin(*n)[label_index(*n)].view) {
+      if (*n > f && candidates.NumViews(*n) > 0 && candidates.Views(f)[l] != candidates.Views(*n)[label_index(*n)]) {
         *smoothness_cost += options.smoothness;
       }
     }
@@ -223,7 +223,7 @@ ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjace
   }
   const auto chosen = [&](std::uint32_t f) {
     std::size_t l = 0;
-    while (candidates.begin(f)[l].view != labels[f]) ++l;
+    while (candidates.Views(f)[l] != labels[f]) ++l;
     return l;
   };
   AddEnergy(candidates, adjacency, options, chosen, &selection.data_cost, &selection.smoothness_cost);

@@ -58,16 +58,19 @@ TEST(FaceViewCandidates, ACoarseCastOfLargeFacesFindsTheViewsAndQualitiesOfTheFu
   std::vector<double> quality_errors, best_qualities;
   for (std::uint32_t face = 0; face < full.NumFaces(); ++face) {
     if (full.NumViews(face) == 0) continue;
-    if (coarse.NumViews(face) > 0 && coarse.begin(face)->view == full.begin(face)->view) ++same_best;
-    best_qualities.push_back(full.begin(face)->quality);
-    for (const FaceViewCandidate* c = full.begin(face); c != full.end(face); ++c) {
-      const FaceViewCandidate* match = std::find_if(coarse.begin(face), coarse.end(face),
-                                                    [&](const FaceViewCandidate& other) { return other.view == c->view; });
-      if (match == coarse.end(face)) {
+    if (coarse.NumViews(face) > 0 && coarse.Views(face)[0] == full.Views(face)[0]) ++same_best;
+    best_qualities.push_back(full.Quality(face, 0));
+    for (std::size_t c = 0; c < full.NumViews(face); ++c) {
+      const std::uint32_t* coarse_end = coarse.Views(face) + coarse.NumViews(face);
+      const std::uint32_t* match = std::find(coarse.Views(face), coarse_end, full.Views(face)[c]);
+      if (match == coarse_end) {
         // Missed, unless the coarse cast kept as many views as it may and another took this one's place.
-        if (coarse.NumViews(face) < std::size_t(options.max_views_per_face)) worst_missed = std::max(worst_missed, double(c->quality));
+        if (coarse.NumViews(face) < std::size_t(options.max_views_per_face)) {
+          worst_missed = std::max(worst_missed, double(full.Quality(face, c)));
+        }
       } else {
-        quality_errors.push_back(std::abs(match->quality - c->quality) / c->quality);
+        const float coarse_quality = coarse.Quality(face, static_cast<std::size_t>(match - coarse.Views(face)));
+        quality_errors.push_back(std::abs(coarse_quality - full.Quality(face, c)) / full.Quality(face, c));
       }
     }
   }
