@@ -87,23 +87,23 @@ RaycastScene::RaycastScene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
   // Embree allocates these buffers with the padding its SIMD loads need.
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
-  auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.faces.size()));
-  if (!vertices || !indices) {
+  if (!vertices) {
     rtcReleaseGeometry(geometry);
     impl_->ThrowIfError("allocate the mesh buffers");
     throw std::runtime_error("Embree failed to allocate the mesh buffers");
   }
+  // The index buffer is the scene's own copy of the faces, shared with Embree (index buffers need no
+  // padding; it lives as long as the scene, which is released first).
   impl_->faces = mesh.faces;
+  static_assert(sizeof(Mesh::Face) == 3 * sizeof(std::uint32_t), "faces are three packed indices");
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, impl_->faces.data(), 0,
+                             sizeof(Mesh::Face), impl_->faces.size());
   impl_->vertex_normals = mesh.vertex_normals;
   impl_->local_vertices.reserve(mesh.vertices.size());
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     impl_->local_vertices.push_back(mesh.vertices[i] - impl_->origin);
     const Eigen::Vector3f local = (mesh.vertices[i] - impl_->origin).cast<float>();
     std::copy(local.data(), local.data() + 3, vertices + 3 * i);
-  }
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    std::copy(mesh.faces[f].begin(), mesh.faces[f].end(), indices + 3 * f);
   }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(impl_->scene, geometry);
