@@ -41,7 +41,7 @@ struct FaceViewCandidate {
 };
 
 struct FaceViewCandidatesOptions {
-  // Best views kept per face (memory: 8 bytes per face and view kept).
+  // Best views kept per face (memory: 8 bytes per face and view kept, 4 once the views are chosen).
   int max_views_per_face = 8;
   // Views seeing a face at more than acos(min_cos_angle) from its normal are dropped (~80 degrees).
   double min_cos_angle = 0.17;
