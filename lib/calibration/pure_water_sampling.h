@@ -8,17 +8,23 @@
 //
 // Screening, per image and against the set:
 //   structure: backscatter is smooth across the image; the fraction of pixels (on a 160-pixel-wide
-//              thumbnail, 3 x 3 median-filtered so isolated outliers do not count) that depart from a Gaussian-smoothed copy by more than 0.003 + 5 % and by more
-//              than 5 times the image's own noise (1.4826 x the median departure) is the image's
-//              structure. Above `max_structure` (1 %) a surface edge is in view.
+//              thumbnail, 3 x 3 median-filtered so isolated outliers do not count) that depart from its
+//              smooth fit (a local quadratic over 39 pixels, the image continued past its edges by point
+//              reflection, so curved gradients and gradients into the border are fitted) by more than
+//              0.003 + 5 % and by more than 5 times the image's own noise (from second differences, which
+//              a surface filling the frame does not inflate) is the image's structure. Above
+//              `max_structure` (1 %) a surface edge is in view.
 //   brightness: a surface lit by the rig is far brighter than backscatter; an image whose mean in any
 //              channel exceeds `max_brightness_ratio` (4) times the set's lower quartile plus 0.002
 //              shows one (the quartile stays open water while up to three images in four do not).
 // Measured: Blender pure water 0 % structure in clear and turbid water (before the median: 0.07-0.09 %
-// clear, 1.1-1.5 % turbid, all of it Monte Carlo fireflies, which rejected every turbid frame), frames
-// with the colour boards in view up to 0.8 % structure or 30 times the pure-water brightness, the turbid
-// seafloor 1.4-2.9 %; a uniform seafloor filling a simulated frame has no
-// structure but is 13 times brighter than open water.
+// clear, 1.1-1.5 % turbid, all of it Monte Carlo fireflies, which rejected every turbid frame), so is the
+// simulator's in clear, coastal and harbour water, in harbour water also exposed for it (brightest channel
+// at 0.35 of full scale; a Gaussian-smoothed copy left 5-6 % there and rejected it); the turbid Blender
+// seafloor 2.1-2.9 %, the clear one 43-50 %, a harbour seafloor seen at 1.8 m 1.5-4.8 %, a seafloor of two
+// colours filling the frame 94 % (0 % before the noise came from second differences); frames filled by a
+// colour board have none but are 11 to 1000 times brighter than open water, as a uniform seafloor filling
+// a simulated frame is 13 times.
 
 #include <string>
 #include <vector>
