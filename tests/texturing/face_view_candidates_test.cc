@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -40,6 +41,36 @@ struct Scene {
 
 // Casting every 3rd or 4th pixel of views whose faces cover about 140 pixels finds the same views for every face
 // as casting every pixel, with nearly the same quality: the exact cast is the truth here.
+// A face keeps its best views in order of quality (ties: the lower view first), at most as many as
+// allowed; a subset copies faces' candidates in the order asked; once the qualities are dropped, the views
+// stay and asking for a quality is an error.
+TEST(FaceViewCandidates, KeepTheBestViewsInOrderAndDropTheirQualitiesOnRequest) {
+  FaceViewCandidates candidates(3, 3);
+  for (const FaceViewCandidate& offer : std::vector<FaceViewCandidate>{{4, 0.5f}, {2, 0.9f}, {7, 0.1f}, {1, 0.5f}, {3, 0.7f}}) {
+    candidates.Offer(1, offer);
+  }
+  candidates.Offer(2, {5, 1.0f});
+  ASSERT_EQ(candidates.NumViews(0), 0u);
+  ASSERT_EQ(candidates.NumViews(1), 3u);
+  EXPECT_EQ(std::vector<std::uint32_t>(candidates.Views(1), candidates.Views(1) + 3), (std::vector<std::uint32_t>{2, 3, 1}));
+  EXPECT_FLOAT_EQ(candidates.Quality(1, 2), 0.5f);
+
+  const FaceViewCandidates subset = candidates.Subset({2, 1});
+  ASSERT_EQ(subset.NumFaces(), 2u);
+  ASSERT_EQ(subset.NumViews(0), 1u);
+  EXPECT_EQ(subset.Views(0)[0], 5u);
+  EXPECT_EQ(std::vector<std::uint32_t>(subset.Views(1), subset.Views(1) + 3), (std::vector<std::uint32_t>{2, 3, 1}));
+  EXPECT_FLOAT_EQ(subset.Quality(1, 0), 0.9f);
+
+  candidates.DropQualities();
+  EXPECT_EQ(std::vector<std::uint32_t>(candidates.Views(1), candidates.Views(1) + 3), (std::vector<std::uint32_t>{2, 3, 1}));
+  EXPECT_THROW(candidates.Quality(1, 0), std::logic_error);
+  EXPECT_THROW(candidates.Offer(0, {1, 1.0f}), std::logic_error);
+  const FaceViewCandidates views_only = candidates.Subset({1});
+  EXPECT_EQ(views_only.Views(0)[2], 1u);
+  EXPECT_THROW(views_only.Quality(0, 0), std::logic_error);
+}
+
 TEST(FaceViewCandidates, ACoarseCastOfLargeFacesFindsTheViewsAndQualitiesOfTheFullCast) {
   const Scene scene;
   const FaceAdjacency adjacency(scene.mesh);
