@@ -119,8 +119,12 @@ FaceViewCandidates::FaceViewCandidates(std::size_t num_faces, int max_views_per_
       qualities_(num_faces * stride_),
       counts_(num_faces, 0) {}
 
-float FaceViewCandidates::Quality(std::uint32_t face, std::size_t i) const {
+void FaceViewCandidates::RequireQualities() const {
   if (qualities_.empty() && !views_.empty()) throw std::logic_error("face view candidates: the qualities were dropped");
+}
+
+float FaceViewCandidates::Quality(std::uint32_t face, std::size_t i) const {
+  RequireQualities();
   return qualities_[face * stride_ + i];
 }
 
@@ -131,7 +135,7 @@ FaceViewCandidates FaceViewCandidates::Subset(const std::vector<std::uint32_t>& 
     const std::size_t from = faces[i] * stride_, count = counts_.at(faces[i]);
     std::copy_n(views_.begin() + from, count, subset.views_.begin() + i * stride_);
     if (!qualities_.empty()) std::copy_n(qualities_.begin() + from, count, subset.qualities_.begin() + i * stride_);
-    subset.counts_[i] = counts_[faces[i]];
+    subset.counts_[i] = static_cast<std::uint8_t>(count);
   }
   return subset;
 }
@@ -142,7 +146,7 @@ void FaceViewCandidates::DropQualities() {
 }
 
 void FaceViewCandidates::Offer(std::uint32_t face, const FaceViewCandidate& candidate) {
-  if (qualities_.empty() && !views_.empty()) throw std::logic_error("face view candidates: the qualities were dropped");
+  RequireQualities();
   std::uint32_t* views = views_.data() + face * stride_;
   float* qualities = qualities_.data() + face * stride_;
   const auto at = [&](std::size_t i) { return FaceViewCandidate{views[i], qualities[i]}; };

@@ -84,6 +84,9 @@ class FaceViewCandidates {
   void DropQualities();
 
  private:
+  // Throws std::logic_error when the qualities were dropped (a table of no faces has none to drop).
+  void RequireQualities() const;
+
   std::size_t stride_;
   std::vector<std::uint32_t> views_;
   std::vector<float> qualities_;

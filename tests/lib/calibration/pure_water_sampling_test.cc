@@ -15,8 +15,8 @@
 #include "lib/image/image_io.h"
 #include "lib/model/light_rig.h"
 #include "lib/model/sensor.h"
-#include "lib/model/water.h"
 #include "lib/model/simulator.h"
+#include "lib/model/water.h"
 #include "tests/support/shared_datasets.h"
 #include "tests/support/test_scenes.h"
 
