@@ -11,7 +11,7 @@
 #   OUTPUT_FOLDER    default a new folder under /tmp; simulated dives there are reused by later runs
 #   FORWARD_SCATTER  1: the dives are rendered with the water's forward scattering (lib/model/simulator.h),
 #                    in folders of their own (NAME_fs)
-#   CALIBRATE_OPTIONS more options for lutex calibrate, e.g. "--remove-forward-scatter --reference-water coastal"
+#   CALIBRATE_OPTIONS more options for lutex calibrate, e.g. "--no-remove-forward-scatter --reference-water clear"
 #   RESTORE_OPTIONS  more options for lutex restore, e.g. --no-smooth-noise
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"

@@ -54,16 +54,19 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
   parser.AddFlag("trust-pure-water", &options->trust_pure_water,
                  "Use every pure-water image, also those that seem to show a surface (a warning says why).");
   parser.AddFlag("in-air", &options->calibration.in_air, "No water: backscatter fixed at 0.");
-  parser.AddString("reference-water", &options->reference_water, "The water the fit starts from: clear or coastal. Its attenuations\n"
-                   "      are then fitted to the observations (README, 'The water prior'); the preset only shapes backscatter.");
+  parser.AddString("reference-water", &options->reference_water,
+                   "The water the fit starts from: auto, clear or coastal. Its attenuations are fitted to\n"
+                   "      the observations (README, 'The water prior'); the preset shapes backscatter and bounds\n"
+                   "      how much forward scattering is taken out. auto fits from clear water, measures how\n"
+                   "      much the water scatters (printed) and fits again from the preset nearest that.");
   parser.AddFlag("remove-forward-scatter", &options->remove_forward_scatter,
                  "Take forward scattering (light from the surface scattered on its way to the camera, which\n"
                  "      blurs the lit centre over the image: turbid water's veil) out of every image before\n"
                  "      fitting (README, 'Forward scattering'): the reference water's, or less where a first fit\n"
                  "      measures the water to scatter less (printed). Recorded in the LUT; lutex restore takes\n"
-                 "      out the same. Recommended in turbid water with --reference-water coastal; harmless in\n"
-                 "      clear water, where the measurement lowers it.\n"
-                 "      Ignored --in-air.");
+                 "      out the same. In turbid water it brings the Blender seafloor from 7.7 to 5.7 pp, in clear\n"
+                 "      water from 2.3 to 1.6. --no-remove-forward-scatter keeps it: one fit instead of two, and\n"
+                 "      restoration 2.9 s faster per 12 MP image. Ignored --in-air.");
   parser.AddInt("lut-nx", &options->calibration.grid.nx, "LUT cells across the image (levels: a tenth, a half, all).");
   parser.AddInt("lut-ny", &options->calibration.grid.ny, "LUT cells down the image.");
   parser.AddInt("lut-nz", &options->calibration.grid.nz, "LUT slabs in depth.");

@@ -14,8 +14,8 @@ int RunRestoreCommand(int argc, char** argv) {
       "lutex restore --workspace W --mesh M --lut L [--output DIR] [--input-encoding E] [--output-encoding E]",
       "Restores every registered image of the COLMAP workspace W to albedo with the LUT L (lutex calibrate):\n"
       "per pixel, the mesh gives the surface point and its shading cos_theta, the LUT gives alpha and beta,\n"
-      "and albedo = (I - beta) / (alpha cos_theta); when the LUT was calibrated with --remove-forward-scatter,\n"
-      "the same forward scattering is first taken out of the image. Writes DIR/NAME (default DIR:\n"
+      "and albedo = (I - beta) / (alpha cos_theta); when the LUT records forward scattering (calibrate takes it\n"
+      "out by default), the same is first taken out of the image. Writes DIR/NAME (default DIR:\n"
       "W/lutex/restored) and an 8-bit confidence map DIR_confidence/NAME.png per image (255 = fully\n"
       "trusted; low where the signal is weak, the pixel saturated, the surface seen at a grazing angle, or\n"
       "the LUT there not constrained by calibration data). Pixels without a surface are 0.\n"

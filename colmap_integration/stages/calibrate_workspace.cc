@@ -307,8 +307,13 @@ void WriteCalibrationSummary(const CalibrateSummary& summary, const CalibrationR
                                 restored.implausible_fraction.z()}},
       {"median_albedo", {restored.median_albedo.x(), restored.median_albedo.y(), restored.median_albedo.z()}}};
   if (summary.water_prior) json["water_prior"] = WaterPriorJson(*summary.water_prior);
+  if (!summary.reference_water.empty()) {
+    json["reference_water"] = {{"name", summary.reference_water},
+                               {"chosen", summary.reference_water_reason}};
+  }
   if (summary.measured_scattering) {
     json["forward_scatter"] = {{"measured_scattering", *summary.measured_scattering},
+                               {"removed", summary.forward_scatter_asked},
                                {"taken_out", Vector3Json(summary.forward_scatter.scattering)},
                                {"anisotropy_g", summary.forward_scatter.anisotropy_g}};
   }
@@ -507,8 +512,8 @@ void CalibrateOptions::Check() const {
         "known colour, or {calibration.grey_world_albedo} (the mean albedo of the surveyed surfaces) to set the scale");
   }
   if (correspondences) correspondence_extraction.Check();
-  if (!WaterPreset(reference_water)) {
-    throw OptionError(std::string("{reference_water} must be ") + WaterPresetNames());
+  if (reference_water != "auto" && !WaterPreset(reference_water)) {
+    throw OptionError(std::string("{reference_water} must be auto, ") + WaterPresetNames());
   }
   if (pure_water_stride < 1) throw OptionError("{pure_water_stride} must be at least 1");
   if (exposure_gains != "auto" && exposure_gains != "fit" && exposure_gains != "none") {
@@ -611,17 +616,35 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
     }
     return solved;
   };
+  const bool in_water = !options.calibration.in_air;
+  const bool measure_water = in_water && options.reference_water == "auto";
+  if (measure_water) options.reference_water = "clear";  // the first fit starts from the clearest
   CalibrateSummary summary;
   CalibrationResult result = gather_and_solve(BackscatterSetAside{}, &summary);
   ForwardScatter scatter;
   std::optional<double> measured_scattering;
-  if (options.remove_forward_scatter && !options.calibration.in_air) {
+  bool fit_again = false;
+  if (in_water) {
     measured_scattering = MeasuredScattering(*summary.water_prior);
+    LogInfo() << "the water scatters about " << std::fixed << std::setprecision(3) << *measured_scattering
+              << " per m (measured, forward_scatter_estimate.h)" << std::defaultfloat;
+    if (measure_water && observations.known_colors.empty()) {
+      // Without a known colour the fitted attenuations take up what the rig's guess gets wrong (simulated
+      // clear water from correspondences: 0.49 per m for a b of 0.045), so the measurement names no water.
+      LogInfo() << "reference water: clear (without known colours the measurement is not trusted to name one)";
+    } else if (measure_water) {
+      const std::string nearest = NearestWaterPreset(*measured_scattering);
+      LogInfo() << "reference water: " << nearest << ", the preset nearest the measurement"
+                << (nearest != options.reference_water ? "; fitting again from it" : "");
+      fit_again = nearest != options.reference_water;
+      options.reference_water = nearest;
+    }
+  }
+  if (in_water && options.remove_forward_scatter) {
     scatter = ForwardScatterToTakeOut(*summary.water_prior, ReferenceWater(options));
-    LogInfo() << "forward scattering: the water scatters about " << std::fixed << std::setprecision(3)
-              << *measured_scattering << " per m (measured), the " << options.reference_water
-              << " water " << DescribeForwardScatter(ForwardScatter::Of(ReferenceWater(options)))
-              << "; taking out the smaller (forward_scatter_estimate.h)" << std::defaultfloat;
+    LogInfo() << "forward scattering: the " << options.reference_water << " water "
+              << DescribeForwardScatter(ForwardScatter::Of(ReferenceWater(options)))
+              << "; taking out the smaller of it and the measurement (forward_scatter_estimate.h)";
   }
   if (!scatter.IsNone()) {
     // From here on every image is sampled without it, and the LUT records it for restoration. It spreads
@@ -635,7 +658,17 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
     const CalibrateSummary first_summary = summary;
     summary = {};
     result = gather_and_solve(BackscatterSetAside{&first.lut, &first_summary.exposure}, &summary);
+  } else if (fit_again) {
+    summary = {};
+    result = gather_and_solve(BackscatterSetAside{}, &summary);
   }
+  if (in_water) {
+    summary.reference_water = options.reference_water;
+    summary.reference_water_reason = !measure_water                  ? "given"
+                                     : observations.known_colors.empty() ? "not measured without known colours"
+                                                                         : "nearest the measurement";
+  }
+  summary.forward_scatter_asked = in_water && options.remove_forward_scatter;
   summary.forward_scatter = scatter;
   summary.measured_scattering = measured_scattering;
   for (const std::string& warning : summary.warnings) LogWarning() << warning;
@@ -703,10 +736,13 @@ void PrintCalibrateSummary(std::ostream& out, const CalibrateSummary& summary) {
             << 100 * summary.restored_observations.implausible_fraction.z() << " %\n"
             << (summary.water_prior ? "  water prior: " + DescribeWaterPrior(*summary.water_prior) + "\n" : std::string());
   if (summary.measured_scattering) {
-    out << "  forward scattering taken out: "
-        << (summary.forward_scatter.IsNone() ? std::string("none") : DescribeForwardScatter(summary.forward_scatter))
-        << " (the water measured to scatter about " << std::setprecision(3) << *summary.measured_scattering
-        << " per m)\n";
+    out << "  water: measured to scatter about " << std::setprecision(3) << *summary.measured_scattering
+        << " per m; reference " << summary.reference_water
+        << " (" << summary.reference_water_reason << "); forward scattering "
+        << (!summary.forward_scatter_asked ? std::string("kept (--no-remove-forward-scatter)")
+            : summary.forward_scatter.IsNone() ? std::string("taken out: none")
+                                               : "taken out: " + DescribeForwardScatter(summary.forward_scatter))
+        << "\n";
   }
   out << "  exposure: " << DescribeExposure(summary) << "\n";
   for (const std::string& warning : summary.warnings) out << "  warning: " << warning << "\n";

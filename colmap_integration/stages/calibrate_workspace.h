@@ -57,16 +57,20 @@ struct CalibrateOptions {
   std::filesystem::path output;      // the LUT file; empty: W/lutex/calibration/lut.lut
   ImageEncoding input_encoding = ImageEncoding::kSrgb8;
   // The water the water prior starts from (lib/calibration/water_prior.h: its single-scattering albedo
-  // and phase function shape backscatter; the attenuations are fitted): "clear" or "coastal" (ignored
-  // in air).
-  std::string reference_water = "clear";
+  // and phase function shape backscatter; the attenuations are fitted), and the most forward scattering
+  // that is taken out: "clear", "coastal", or "auto" (ignored in air). Auto fits from the clear water
+  // first, measures how much the water scatters (lib/calibration/forward_scatter_estimate.h) and fits
+  // again from the preset nearest that, when it is another one or forward scattering is taken out: users
+  // rarely know their water, and the presets are starting points, not assumptions.
+  std::string reference_water = "auto";
   // Take forward scattering out of every image before sampling it (lib/model/forward_scatter.h) and record
   // it in the LUT so that restoration takes out the same: the reference water's, lowered per channel to
   // the scattering measured from a first fit (lib/calibration/forward_scatter_estimate.h says why the
-  // reference is the most taken out). Ignored in air. Off by default: lutex's own simulator renders no
-  // forward scattering unless asked, and where an image has less than is taken out, dark surfaces beside
-  // bright ones come out too dark.
-  bool remove_forward_scatter = false;
+  // reference is the most taken out). Ignored in air. Every water scatters; where an image holds less than
+  // is taken out (lutex's own simulator renders none unless a scene asks for it), dark surfaces beside
+  // bright ones come out too dark, which the measurement keeps small. Costs a second pass of sampling
+  // and fitting, and in restoration 2.9 s per 12 MP image (README, 'Forward scattering').
+  bool remove_forward_scatter = true;
   // A light-rig file ("lights" as in a scene description, lib/model/light_rig_json.h); when given, its
   // lights replace calibration.grid.shading.rig.
   std::filesystem::path shading_rig;
@@ -123,11 +127,17 @@ struct CalibrateSummary {
   // The water (or in air the light alone) fitted under the LUT (lib/calibration/water_prior.h); its lut is
   // the calibration's reference and tells the divergence check where the signal can pin an albedo.
   std::optional<WaterPrior> water_prior;
+  // The named water the LUT's water prior started from, and why that one: "given", "nearest the
+  // measurement" (--reference-water auto) or "not measured without known colours" (auto; the clear water).
+  // Empty in air.
+  std::string reference_water;
+  std::string reference_water_reason;
   // What was taken out of every image as forward scattering (--remove-forward-scatter,
   // lib/calibration/forward_scatter_estimate.h); none otherwise. The LUT records the same.
   ForwardScatter forward_scatter;
-  // With --remove-forward-scatter in water: the water's scattering measured from the first fit, per m
-  // (an estimate; forward_scatter_estimate.h says how good). Unset otherwise.
+  bool forward_scatter_asked = false;  // --remove-forward-scatter in water
+  // In water: the water's scattering measured from the first fit, per m (an estimate;
+  // forward_scatter_estimate.h says how good). Unset in air.
   std::optional<double> measured_scattering;
   // The exposure the LUT is for: EXIF factors and reference, and the gains fitted per workspace image.
   ExposureRecord exposure;

@@ -209,6 +209,16 @@ void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs:
            << "<tr><td>water prior: attenuation of backscatter, per m (R / G / B)</td><td>"
            << Vector(prior.at("backscatter_attenuation_per_m"), 3) << "</td></tr>";
     }
+    if (summary.contains("forward_scatter")) {
+      const auto& scatter = summary.at("forward_scatter");
+      const auto& water = summary.value("reference_water", nlohmann::json::object());
+      html << "<tr><td>water: scattering measured, per m</td><td>" << std::setprecision(3)
+           << scatter.at("measured_scattering").get<double>() << "; reference water "
+           << Escape(water.value("name", std::string("?"))) << " (" << Escape(water.value("chosen", std::string("given")))
+           << ")</td></tr><tr><td>forward scattering taken out, per m (R / G / B)</td><td>"
+           << (scatter.value("removed", true) ? Vector(scatter.at("taken_out"), 3) : std::string("none (kept)"))
+           << "</td></tr>";
+    }
     if (summary.contains("exposure")) {
       const auto& exposure = summary.at("exposure");
       const double reference = exposure.value("exif_reference", 0.0);

@@ -30,6 +30,8 @@
 //
 // The anisotropy g is not measured: it is the reference water's (0.9; natural waters have 0.85 - 0.95).
 
+#include <string>
+
 #include "lib/calibration/water_prior.h"
 #include "lib/model/forward_scatter.h"
 #include "lib/model/water.h"
@@ -38,6 +40,13 @@ namespace lutex {
 
 // b per metre from `prior` as above (0 in air).
 double MeasuredScattering(const WaterPrior& prior);
+
+// The named water (lib/model/water.h) whose scattering, averaged over the channels, is nearest `measured`
+// on a log scale: what `lutex calibrate --reference-water auto` starts the final fit from. The presets' b
+// differ eightfold (0.045 and 0.38 per m), so the boundary lies at 0.13 per m, far from both: the Blender
+// clear boards measure 0.078, the turbid ones 0.39; lutex's simulated clear, coastal and harbour waters
+// 0.018, 0.45 and 1.05.
+std::string NearestWaterPreset(double measured);
 
 // Per channel the smaller of `reference`'s b and the measured b, with `reference`'s g. None in air, or
 // where either is 0.

@@ -26,4 +26,6 @@ std::optional<Water> WaterPreset(const std::string& name) {
 
 const char* WaterPresetNames() { return "clear or coastal"; }
 
+std::vector<std::string> WaterPresetList() { return {"clear", "coastal"}; }
+
 }  // namespace lutex

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -28,6 +29,8 @@ struct Water {
 std::optional<Water> WaterPreset(const std::string& name);
 // "clear or coastal", for messages.
 const char* WaterPresetNames();
+// The names of the presets, clearest first.
+std::vector<std::string> WaterPresetList();
 
 // Henyey-Greenstein phase function (normalised over the sphere: integrates to 1 over 4 pi sr) for the
 // cosine of the angle between the incoming propagation direction and the scattered direction.

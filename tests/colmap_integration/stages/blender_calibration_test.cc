@@ -31,10 +31,11 @@ namespace fs = std::filesystem;
 
 // Calibrates from a water's two colour boards and its pure water, shading with the metadata's rig
 // (lutex calibrate --shading-rig) or, without `with_rig`, with the rig lutex fits (the default), into `dir`;
-// starting from `reference_water`, and taking its forward scattering out when asked.
+// starting from `reference_water` (by default, as lutex does, the named water nearest the scattering
+// measured), and taking forward scattering out unless asked not to.
 CalibrateSummary CalibrateFromBoards(const fs::path& dev, const std::string& water, const fs::path& dir,
-                                     bool with_rig = true, const std::string& reference_water = "clear",
-                                     bool remove_forward_scatter = false) {
+                                     bool with_rig = true, const std::string& reference_water = "auto",
+                                     bool remove_forward_scatter = true) {
   CalibrateOptions calibrate;
   calibrate.reference_water = reference_water;
   calibrate.remove_forward_scatter = remove_forward_scatter;
@@ -124,6 +125,7 @@ TEST(BlenderCalibration, ColorCheckerPatchesFromBoardsAndPureWater) {
   if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
   testing::TempDir dir;
   const CalibrateSummary calibrated = CalibrateFromBoards(*dev, "clear", dir.path());
+  EXPECT_EQ(calibrated.reference_water, "clear");  // measured to scatter 0.078 per m; the water's b is 0.04 - 0.05
   ExpectPhysicalSignalAttenuation(calibrated, testing::LoadBlenderDataset(*dev / "calib_boards_clear"));
   const std::vector<double> errors = SortedPatchErrors(*dev / "checker_clear", calibrated.lut, dir.path());
   ASSERT_GT(errors.size(), 100u);
@@ -145,16 +147,19 @@ TEST(BlenderCalibration, TurbidWaterIsMeasuredAndTheColorCheckerRestored) {
   const auto dev = testing::SharedDevDatasets();
   if (!dev) GTEST_SKIP() << "../shared/datasets is absent";
   testing::TempDir dir;
-  const CalibrateSummary calibrated = CalibrateFromBoards(*dev, "turbid", dir.path(), true, "coastal", true);
+  const CalibrateSummary calibrated = CalibrateFromBoards(*dev, "turbid", dir.path());
   // The scattering measured from the first fit (lib/calibration/forward_scatter_estimate.h; 0.32 per m
   // with this rig, 0.39 with the fitted one) lies near the water's b (0.35 - 0.42), below what its
-  // attenuation leaves beyond pure water's absorption (0.45); the preset's is taken out where it is smaller.
+  // attenuation leaves beyond pure water's absorption (0.45). The coastal preset is the nearest, which
+  // lutex then fits from, and its b is taken out where it is smaller than the measurement.
   const testing::BlenderDataset boards = testing::LoadBlenderDataset(*dev / "calib_boards_turbid");
   ASSERT_TRUE(calibrated.measured_scattering);
   const double measured = *calibrated.measured_scattering;
   EXPECT_GE(measured, 0.8 * boards.water.scattering.minCoeff());
   EXPECT_LE(measured, (boards.water.absorption + boards.water.scattering - WaterPreset("clear")->absorption).minCoeff());
   const ForwardScatter taken_out = ReadLut(calibrated.lut).grid().forward_scatter;
+  EXPECT_EQ(calibrated.reference_water, "coastal");
+  EXPECT_EQ(calibrated.reference_water_reason, "nearest the measurement");
   EXPECT_EQ(taken_out, calibrated.forward_scatter);
   EXPECT_EQ(taken_out.scattering, WaterPreset("coastal")->scattering.cwiseMin(Eigen::Vector3d::Constant(measured)));
   EXPECT_EQ(calibrated.num_pure_water_skipped, 0u);

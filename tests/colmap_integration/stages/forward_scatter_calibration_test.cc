@@ -1,8 +1,9 @@
-// `lutex calibrate --remove-forward-scatter` on a dive the simulator renders with the water's forward
-// scattering (lib/model/simulator.h): the example's board, pure water and survey in turbid coastal water.
-// Calibration measures the scattering, takes out what lib/calibration/forward_scatter_estimate.h says,
-// records it in the LUT and the summary, and the survey restored with that LUT is closer to its true
-// albedo than with a LUT fitted to the scattered images.
+// `lutex calibrate` with its defaults (--reference-water auto, forward scattering taken out) on a dive the
+// simulator renders with the water's forward scattering (lib/model/simulator.h): the example's board,
+// pure water and survey in turbid coastal water. Calibration measures the scattering, names the coastal
+// water as the nearest preset, takes out what lib/calibration/forward_scatter_estimate.h says, records it
+// in the LUT and the summary, and the survey restored with that LUT is closer to its true albedo than
+// with a LUT fitted to the scattered images (--no-remove-forward-scatter).
 
 #include <cmath>
 #include <fstream>
@@ -68,7 +69,6 @@ CalibrateOptions BoardCalibration(const fs::path& dive, const fs::path& lut, boo
   options.targets_workspace = dive / "board";
   options.targets_mesh = dive / "board" / "scene" / "mesh.ply";
   options.pure_water = dive / "purewater";
-  options.reference_water = "coastal";
   options.remove_forward_scatter = remove_forward_scatter;
   options.input_encoding = ImageEncoding::kSrgb8;
   options.calibration.grid.nx = 20;
@@ -127,6 +127,8 @@ TEST(ForwardScatterCalibration, MeasuredScatteringIsTakenOutRecordedAndRestoresT
               water.scattering.maxCoeff());
   EXPECT_GE(measured, 0.8 * water.scattering.minCoeff());
   EXPECT_LE(measured, 1.5 * water.scattering.maxCoeff());
+  EXPECT_EQ(removed.reference_water, "coastal");
+  EXPECT_EQ(removed.reference_water_reason, "nearest the measurement");
   EXPECT_EQ(removed.forward_scatter, ForwardScatterToTakeOut(*removed.water_prior, *WaterPreset("coastal")));
   EXPECT_FALSE(removed.forward_scatter.IsNone());
   EXPECT_EQ(ReadLut(removed.lut).grid().forward_scatter, removed.forward_scatter);
@@ -134,9 +136,14 @@ TEST(ForwardScatterCalibration, MeasuredScatteringIsTakenOutRecordedAndRestoresT
       nlohmann::json::parse(std::ifstream(removed.lut.parent_path() / "calibration_summary.json")).at("forward_scatter");
   EXPECT_DOUBLE_EQ(written.at("measured_scattering").get<double>(), measured);
   EXPECT_DOUBLE_EQ(written.at("taken_out")[1].get<double>(), removed.forward_scatter.scattering.y());
+  EXPECT_TRUE(written.at("removed").get<bool>());
 
+  // Kept, the water is still measured and named.
   const CalibrateSummary kept = CalibrateWorkspace(BoardCalibration(dive, dive / "kept" / "lut.lut", false));
-  EXPECT_FALSE(kept.measured_scattering);
+  ASSERT_TRUE(kept.measured_scattering);
+  EXPECT_NEAR(*kept.measured_scattering, measured, 0.05);
+  EXPECT_EQ(kept.reference_water, "coastal");
+  EXPECT_FALSE(kept.forward_scatter_asked);
   EXPECT_TRUE(kept.forward_scatter.IsNone());
   EXPECT_TRUE(ReadLut(kept.lut).grid().forward_scatter.IsNone());
 
@@ -146,8 +153,8 @@ TEST(ForwardScatterCalibration, MeasuredScatteringIsTakenOutRecordedAndRestoresT
   EXPECT_LT(error_removed, error_kept);  // measured 6.81 against 8.93 pp
 }
 
-// The summary says what was measured and what was taken out, and "none" where the measurement left nothing
-// to take out; without the option it says nothing of forward scattering.
+// The summary says what was measured, which water was named and how, and what was taken out: "none" where
+// the measurement left nothing to take out, "kept" where the user asked to keep it; in air nothing of it.
 TEST(ForwardScatterCalibration, SummarySaysWhatWasMeasuredAndTakenOut) {
   const auto printed = [](const CalibrateSummary& summary) {
     std::ostringstream out;
@@ -157,14 +164,24 @@ TEST(ForwardScatterCalibration, SummarySaysWhatWasMeasuredAndTakenOut) {
   CalibrateSummary summary;
   EXPECT_EQ(printed(summary).find("forward scattering"), std::string::npos);
   summary.measured_scattering = 0.0;
-  EXPECT_NE(printed(summary).find("forward scattering taken out: none (the water measured to scatter about 0.000 per m)"),
+  summary.reference_water = "clear";
+  summary.reference_water_reason = "nearest the measurement";
+  summary.forward_scatter_asked = true;
+  EXPECT_NE(printed(summary).find("water: measured to scatter about 0.000 per m; reference clear (nearest the "
+                                  "measurement); forward scattering taken out: none"),
             std::string::npos)
       << printed(summary);
   summary.measured_scattering = 0.3;
+  summary.reference_water = "coastal";
+  summary.reference_water_reason = "given";
   summary.forward_scatter.scattering = Eigen::Vector3d(0.3, 0.3, 0.3);
-  EXPECT_NE(printed(summary).find("forward scattering taken out: b 0.300 0.300 0.300 per m (r g b), g 0.90 (the water "
-                                  "measured to scatter about 0.300 per m)"),
+  EXPECT_NE(printed(summary).find("reference coastal (given); forward scattering taken out: b 0.300 0.300 0.300 per m "
+                                  "(r g b), g 0.90"),
             std::string::npos)
+      << printed(summary);
+  summary.forward_scatter_asked = false;
+  summary.forward_scatter = {};
+  EXPECT_NE(printed(summary).find("forward scattering kept (--no-remove-forward-scatter)"), std::string::npos)
       << printed(summary);
 }
 

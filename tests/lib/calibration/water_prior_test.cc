@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -121,7 +122,9 @@ TEST(WaterPrior, RecoversATurbidWaterFromTwoKnownColoursWithTheRigGiven) {
 // clear, a turbid and a harbour water: never below the water's least b (every water absorbs at least what
 // pure water does) and at most the bound its attenuation leaves; exact where the water absorbs no more
 // than pure water (the clear one, b 0.04 - 0.05). What is taken out is the smaller of it and the
-// reference water's b: the coastal preset's in turbid water, the measurement in the clear one.
+// reference water's b: the coastal preset's in turbid water, the measurement in the clear one. The preset
+// nearest the measurement (--reference-water auto) is the clear one for the clear water and the coastal
+// one for the others, whichever preset the fit started from.
 TEST(WaterPrior, MeasuresTheScatteringOfClearTurbidAndHarbourWater) {
   Water clear = *WaterPreset("clear");
   clear.scattering = Eigen::Vector3d(0.04, 0.045, 0.05);
@@ -132,6 +135,7 @@ TEST(WaterPrior, MeasuresTheScatteringOfClearTurbidAndHarbourWater) {
   const Water coastal = *WaterPreset("coastal");
   const LightRig rig = testing::TwoCosineLights(0.4, 1.0, 2.0);
   for (const Water& water : {clear, TurbidWater(), harbour}) {
+    const std::string nearest = water.scattering == clear.scattering ? "clear" : "coastal";
     const Truth truth = MakeTruth(rig, water);
     ObservationSet observations;
     observations.known_colors = KnownColours(truth);
@@ -146,7 +150,13 @@ TEST(WaterPrior, MeasuresTheScatteringOfClearTurbidAndHarbourWater) {
     EXPECT_LE(b, (water.Attenuation() - pure_water_absorption).minCoeff() + 0.01);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(taken_out.scattering[c], std::min(b, coastal.scattering[c])) << c;
     EXPECT_EQ(taken_out.anisotropy_g, coastal.anisotropy_g);
+    EXPECT_EQ(NearestWaterPreset(b), nearest);
+    options.start = *WaterPreset("clear");
+    const double from_clear = MeasuredScattering(FitWaterPrior(observations, rig, truth.camera, truth.grid, options));
+    std::printf("  measured %.3f starting from the clear water\n", from_clear);
+    EXPECT_EQ(NearestWaterPreset(from_clear), nearest);
   }
+  EXPECT_EQ(NearestWaterPreset(0.0), "clear");
   WaterPrior in_air;
   in_air.in_air = true;
   EXPECT_EQ(MeasuredScattering(in_air), 0.0);
