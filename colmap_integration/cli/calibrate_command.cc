@@ -58,15 +58,16 @@ void AddCalibrateStageOptions(OptionParser& parser, CalibrateOptions* options) {
                    "The water the fit starts from: auto, clear or coastal. Its attenuations are fitted to\n"
                    "      the observations (README, 'The water prior'); the preset shapes backscatter and bounds\n"
                    "      how much forward scattering is taken out. auto fits from clear water, measures how\n"
-                   "      much the water scatters (printed) and fits again from the preset nearest that.");
+                   "      much the water scatters (printed) and fits again from the preset nearest that; without\n"
+                   "      known colours (--targets or --chessboard) it keeps the clear water.");
   parser.AddFlag("remove-forward-scatter", &options->remove_forward_scatter,
                  "Take forward scattering (light from the surface scattered on its way to the camera, which\n"
                  "      blurs the lit centre over the image: turbid water's veil) out of every image before\n"
                  "      fitting (README, 'Forward scattering'): the reference water's, or less where a first fit\n"
                  "      measures the water to scatter less (printed). Recorded in the LUT; lutex restore takes\n"
                  "      out the same. In turbid water it brings the Blender seafloor from 7.7 to 5.7 pp, in clear\n"
-                 "      water from 2.3 to 1.6. --no-remove-forward-scatter keeps it: one fit instead of two, and\n"
-                 "      restoration 2.9 s faster per 12 MP image. Ignored --in-air.");
+                 "      water from 1.8 to 1.4. --no-remove-forward-scatter keeps it: in clear water one fit\n"
+                 "      instead of two, and restoration 2.9 s faster per 12 MP image. Ignored --in-air.");
   parser.AddInt("lut-nx", &options->calibration.grid.nx, "LUT cells across the image (levels: a tenth, a half, all).");
   parser.AddInt("lut-ny", &options->calibration.grid.ny, "LUT cells down the image.");
   parser.AddInt("lut-nz", &options->calibration.grid.nz, "LUT slabs in depth.");

@@ -61,7 +61,9 @@ struct CalibrateOptions {
   // that is taken out: "clear", "coastal", or "auto" (ignored in air). Auto fits from the clear water
   // first, measures how much the water scatters (lib/calibration/forward_scatter_estimate.h) and fits
   // again from the preset nearest that, when it is another one or forward scattering is taken out: users
-  // rarely know their water, and the presets are starting points, not assumptions.
+  // rarely know their water, and the presets are starting points, not assumptions. Without known colours
+  // the measurement is not trusted to name a water (the fitted attenuations take up the guessed rig's
+  // error) and auto keeps the clear one. A rig fitted in the first fit is kept for the second.
   std::string reference_water = "auto";
   // Take forward scattering out of every image before sampling it (lib/model/forward_scatter.h) and record
   // it in the LUT so that restoration takes out the same: the reference water's, lowered per channel to

@@ -214,7 +214,7 @@ void CalibrationSection(std::ostream& html, PictureEmbedder& pictures, const fs:
       const auto& water = summary.value("reference_water", nlohmann::json::object());
       html << "<tr><td>water: scattering measured, per m</td><td>" << std::setprecision(3)
            << scatter.at("measured_scattering").get<double>() << "; reference water "
-           << Escape(water.value("name", std::string("?"))) << " (" << Escape(water.value("chosen", std::string("given")))
+           << Escape(water.value("name", std::string("unknown"))) << " (" << Escape(water.value("chosen", std::string("unknown")))
            << ")</td></tr><tr><td>forward scattering taken out, per m (R / G / B)</td><td>"
            << (scatter.value("removed", true) ? Vector(scatter.at("taken_out"), 3) : std::string("none (kept)"))
            << "</td></tr>";
