@@ -513,7 +513,8 @@ void CalibrateOptions::Check() const {
   }
   if (correspondences) correspondence_extraction.Check();
   if (reference_water != "auto" && !WaterPreset(reference_water)) {
-    throw OptionError(std::string("{reference_water} must be auto, ") + WaterPresetNames());
+    throw OptionError(std::string("{reference_water} must be auto, ") + WaterPresetNames() + ", not '" +
+                      reference_water + "'");
   }
   if (pure_water_stride < 1) throw OptionError("{pure_water_stride} must be at least 1");
   if (exposure_gains != "auto" && exposure_gains != "fit" && exposure_gains != "none") {

@@ -169,6 +169,8 @@ std::vector<BadInput> Cases() {
       {"NegativeThreadCount", {}, kRestore + " --num-threads -3", "--num-threads", "must be from 0 to"},
       {"HugeThreadCount", {}, kRestore + " --num-threads 100000", "--num-threads", "must be from 0 to"},
       {"MemoryLimitNotANumber", {}, kRestore + " --memory-limit lots", "--memory-limit", "must be a number of MiB"},
+      {"UnknownReferenceWater", {}, kCalibrate + " --reference-water murky", "--reference-water",
+       "must be auto, clear or coastal, not 'murky'"},
       {"EmptyMeshInAConfigFile", [](const fs::path& d) { WriteText(d / "lutex.conf", "# dive\nmesh =\n"); },
        "restore --workspace {D}/W --lut {D}/lut.lut --config {D}/lutex.conf", "{D}/lutex.conf:2", "--mesh has an empty value"},
       {"UnknownKeyInAConfigFile", [](const fs::path& d) { WriteText(d / "lutex.conf", "mesh = W/scene/mesh.ply\nlutt = x\n"); },
