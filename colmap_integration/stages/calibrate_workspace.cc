@@ -624,6 +624,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   CalibrationResult result = gather_and_solve(BackscatterSetAside{}, &summary);
   ForwardScatter scatter;
   std::optional<double> measured_scattering;
+  std::string reference_water_reason = "given";
   bool fit_again = false;
   if (in_water) {
     measured_scattering = MeasuredScattering(*summary.water_prior);
@@ -632,8 +633,10 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
     if (measure_water && observations.known_colors.empty()) {
       // Without a known colour the fitted attenuations take up what the rig's guess gets wrong (simulated
       // clear water from correspondences: 0.49 per m for a b of 0.045), so the measurement names no water.
+      reference_water_reason = "not measured without known colours";
       LogInfo() << "reference water: clear (without known colours the measurement is not trusted to name one)";
     } else if (measure_water) {
+      reference_water_reason = "nearest the measurement";
       const std::string nearest = NearestWaterPreset(*measured_scattering);
       LogInfo() << "reference water: " << nearest << ", the preset nearest the measurement"
                 << (nearest != options.reference_water ? "; fitting again from it" : "");
@@ -665,9 +668,7 @@ CalibrateSummary CalibrateWorkspace(const CalibrateOptions& given, const LoadedD
   }
   if (in_water) {
     summary.reference_water = options.reference_water;
-    summary.reference_water_reason = !measure_water                  ? "given"
-                                     : observations.known_colors.empty() ? "not measured without known colours"
-                                                                         : "nearest the measurement";
+    summary.reference_water_reason = reference_water_reason;
   }
   summary.forward_scatter_asked = in_water && options.remove_forward_scatter;
   summary.forward_scatter = scatter;

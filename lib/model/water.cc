@@ -24,8 +24,15 @@ std::optional<Water> WaterPreset(const std::string& name) {
   return water;
 }
 
-const char* WaterPresetNames() { return "clear or coastal"; }
-
 std::vector<std::string> WaterPresetList() { return {"clear", "coastal"}; }
+
+std::string WaterPresetNames() {
+  const std::vector<std::string> names = WaterPresetList();
+  std::string joined;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    joined += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  return joined;
+}
 
 }  // namespace lutex

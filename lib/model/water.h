@@ -27,10 +27,10 @@ struct Water {
 //   "coastal": absorption 0.45 0.12 0.25, scattering 0.35 0.40 0.38 [1/m], g 0.9
 // Nothing for another name.
 std::optional<Water> WaterPreset(const std::string& name);
-// "clear or coastal", for messages.
-const char* WaterPresetNames();
 // The names of the presets, clearest first.
 std::vector<std::string> WaterPresetList();
+// The same names as a phrase for messages: "clear or coastal".
+std::string WaterPresetNames();
 
 // Henyey-Greenstein phase function (normalised over the sphere: integrates to 1 over 4 pi sr) for the
 // cosine of the angle between the incoming propagation direction and the scattered direction.
