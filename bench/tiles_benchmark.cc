@@ -36,6 +36,7 @@ struct Measurement {
   double peak_mib = 0.0;
   double tiles = 0.0;
   double faces = 0.0;
+  double piece_faces = 0.0;  // the most faces a leaf's views were chosen on (texturing/tile_views.h)
 };
 
 // A 10 x 6.25 m patch of seafloor (0.02 m cells: 312 k faces) per unit of area, `width` x `height` units,
@@ -72,6 +73,7 @@ Measurement Tiles(const fs::path& workspace, std::size_t tile_faces, std::size_t
   measurement.seconds = bench::SecondsSince(start);
   measurement.tiles = double(summary.num_tiles);
   measurement.faces = double(summary.num_faces);
+  measurement.piece_faces = double(summary.max_piece_faces);
   return measurement;
 }
 
@@ -114,9 +116,11 @@ int main(int argc, char** argv) {
     const double decode = bench::DecodeSeconds(dive / "W", num_threads);
     const Measurement tiles = bench::InChild<Measurement>([&] { return Tiles(dive / "W", tile_faces, std::size_t(cache_mib) << 20, num_threads); });
     const Measurement texture = bench::InChild<Measurement>([&] { return Texture(dive / "W", num_threads); });
-    std::printf("%4dx %8.2f %7d %11.2f %10.2f %7.1f %11.0f %12.2f %10.1f %11.0f   (%0.f tiles)\n", area.factor,
-                tiles.faces / 1e6, 4 * images_per_line * area.factor, decode, tiles.seconds, tiles.seconds / decode,
-                tiles.peak_mib, texture.seconds, texture.seconds / decode, texture.peak_mib, tiles.tiles);
+    std::printf("%4dx %8.2f %7d %11.2f %10.2f %7.1f %11.0f %12.2f %10.1f %11.0f   (%0.f tiles; views chosen on "
+                "pieces of at most %.0f k faces)\n",
+                area.factor, tiles.faces / 1e6, 4 * images_per_line * area.factor, decode, tiles.seconds,
+                tiles.seconds / decode, tiles.peak_mib, texture.seconds, texture.seconds / decode, texture.peak_mib,
+                tiles.tiles, tiles.piece_faces / 1e3);
     std::fflush(stdout);
     fs::remove_all(dive);
   }

@@ -6,6 +6,7 @@
 #include <string>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 #include "lib/util/logging.h"
@@ -65,6 +66,48 @@ int RaysInside(const std::array<Eigen::Vector2d, 3>& pixels, int stride) {
     }
   }
   return inside;
+}
+
+// Rays of the strided table around `box`'s projection into `view` (VisibilityCasts::faces_within): its
+// edges sampled (a distortion bends them), grown by kWindowMargin rays and clipped to the table. The whole
+// table when part of the box is behind the camera; an empty rectangle when the box is off the image.
+constexpr int kWindowMargin = 3;
+cv::Rect CastWindow(const TextureView& view, const Eigen::AlignedBox3d& box, int stride, bool* whole) {
+  constexpr int kEdgeSamples = 8;
+  *whole = false;
+  double x_min = INFINITY, x_max = -INFINITY, y_min = INFINITY, y_max = -INFINITY;
+  for (int a = 0; a < 8; ++a) {
+    for (int axis = 0; axis < 3; ++axis) {
+      if (a & (1 << axis)) continue;  // each edge once: from a corner along an axis it is low on
+      const Eigen::Vector3d from = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(a));
+      const Eigen::Vector3d to = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(a | (1 << axis)));
+      for (int i = 0; i <= kEdgeSamples; ++i) {
+        const Eigen::Vector3d point_in_cam = view.cam_from_world * (from + (to - from) * (double(i) / kEdgeSamples));
+        if (!(point_in_cam.z() > 0.0)) {
+          *whole = true;
+          return cv::Rect();
+        }
+        const Eigen::Vector2d pixel = view.camera.ImgFromCam(point_in_cam);
+        x_min = std::min(x_min, pixel.x());
+        x_max = std::max(x_max, pixel.x());
+        y_min = std::min(y_min, pixel.y());
+        y_max = std::max(y_max, pixel.y());
+      }
+    }
+  }
+  if (!(std::isfinite(x_min) && std::isfinite(x_max) && std::isfinite(y_min) && std::isfinite(y_max))) {
+    *whole = true;
+    return cv::Rect();
+  }
+  const int cols = (static_cast<int>(view.camera.width) + stride - 1) / stride;
+  const int rows = (static_cast<int>(view.camera.height) + stride - 1) / stride;
+  const double first_col = std::max(0.0, std::floor(x_min / stride) - kWindowMargin);
+  const double first_row = std::max(0.0, std::floor(y_min / stride) - kWindowMargin);
+  const double end_col = std::min(double(cols), std::ceil(x_max / stride) + kWindowMargin + 1);
+  const double end_row = std::min(double(rows), std::ceil(y_max / stride) + kWindowMargin + 1);
+  if (!(end_col > first_col && end_row > first_row)) return cv::Rect();
+  return cv::Rect(static_cast<int>(first_col), static_cast<int>(first_row), static_cast<int>(end_col - first_col),
+                  static_cast<int>(end_row - first_row));
 }
 
 bool Better(const FaceViewCandidate& a, const FaceViewCandidate& b) {
@@ -164,39 +207,80 @@ void FaceViewCandidates::Offer(std::uint32_t face, const FaceViewCandidate& cand
   counts_[face] = static_cast<std::uint8_t>(count);
 }
 
+VisibilityCasts CastEveryView(const Mesh& mesh, const std::vector<TextureView>& views, int rays_per_face) {
+  VisibilityCasts casts;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    casts.views.push_back(static_cast<std::uint32_t>(v));
+    casts.stride_of_view.push_back(VisibilityStride(mesh, views[v], rays_per_face));
+  }
+  return casts;
+}
+
 FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency& adjacency,
                                           const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
                                           const ViewImageSource& source, const FaceViewCandidatesOptions& options) {
   options.Check();
+  return FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, options,
+                                CastEveryView(mesh, views, options.rays_per_face));
+}
+
+FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency& adjacency,
+                                          const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
+                                          const ViewImageSource& source, const FaceViewCandidatesOptions& options,
+                                          const VisibilityCasts& casts) {
+  options.Check();
+  if (casts.stride_of_view.size() != views.size()) throw std::invalid_argument("visibility: one stride per view needed");
   const std::size_t num_faces = mesh.faces.size();
   FaceViewCandidates candidates(num_faces, options.max_views_per_face);
   constexpr std::size_t kNumLocks = 1024;
   std::vector<std::mutex> locks(kNumLocks);
-  ProgressReporter progress("texture: visibility", views.size(), "views");
+  std::optional<ProgressReporter> progress;
+  if (options.show_progress) progress.emplace("texture: visibility", casts.views.size(), "views");
   std::array<std::atomic<int>, kMaxVisibilityStride + 1> views_by_stride{};
   constexpr std::array<const char*, kMaxVisibilityStride + 1> kOrdinals = {"", "", "2nd", "3rd", "4th"};
   // The maps of the view each worker is on, reused from view to view.
   std::vector<GeometryMaps> worker_maps(static_cast<std::size_t>(ResolveNumThreads(options.num_threads)));
-  ParallelForOnWorkers(views.size(), options.num_threads, [&](std::size_t view_index, int worker) {
+  ParallelForOnWorkers(casts.views.size(), options.num_threads, [&](std::size_t cast, int worker) {
+    const std::size_t view_index = casts.views[cast];
     const TextureView& view = views[view_index];
     GeometryMaps& maps = worker_maps[static_cast<std::size_t>(worker)];
     // The maps hold every stride-th pixel: map (col, row) is the image's pixel (StridedPixel(col), StridedPixel(row)).
-    const int stride = VisibilityStride(mesh, view, options.rays_per_face);
+    const int stride = casts.stride_of_view[view_index];
     ++views_by_stride[static_cast<std::size_t>(stride)];
-    raycaster.RenderStrided(view, stride, &maps);
     const int width = static_cast<int>(view.camera.width), height = static_cast<int>(view.camera.height);
-    const cv::Mat confidence = LoadViewConfidence(source, views, view_index);
+    cv::Rect window;  // of the strided table; empty: all of it
+    if (casts.faces_within) {
+      bool whole = false;
+      window = CastWindow(view, *casts.faces_within, stride, &whole);
+      if (!whole && window.empty()) {
+        if (progress) progress->Advance();
+        return;
+      }
+    }
+    raycaster.RenderStrided(view, stride, &maps, window);
+    // The image's pixels under the maps' rays, whose confidence is read.
+    const cv::Point origin = maps.origin;
+    const int image_x = StridedPixel(origin.x, stride, width), image_y = StridedPixel(origin.y, stride, height);
+    const cv::Rect image_window =
+        window.empty() ? cv::Rect()
+                       : cv::Rect(image_x, image_y, StridedPixel(origin.x + maps.face_id.cols - 1, stride, width) - image_x + 1,
+                                  StridedPixel(origin.y + maps.face_id.rows - 1, stride, height) - image_y + 1);
+    const cv::Mat confidence = LoadViewConfidence(source, views, view_index, image_window);
+    const cv::Point confidence_origin = image_window.empty() ? cv::Point(0, 0) : image_window.tl();
     thread_local FaceHits face_hits;
     face_hits.Resize(num_faces);
     face_hits.Clear();
     for (int row = 0; row < maps.face_id.rows; ++row) {
       const int* face_row = maps.face_id.ptr<int>(row);
-      const cv::Vec3f* confidence_row = confidence.empty() ? nullptr : confidence.ptr<cv::Vec3f>(StridedPixel(row, stride, height));
+      const cv::Vec3f* confidence_row =
+          confidence.empty() ? nullptr
+                             : confidence.ptr<cv::Vec3f>(StridedPixel(origin.y + row, stride, height) - confidence_origin.y);
       for (int col = 0; col < maps.face_id.cols; ++col) {
         const int face = face_row[col];
         if (face < 0) continue;
         if (face_hits.hits[face]++ == 0) face_hits.touched.push_back(static_cast<std::uint32_t>(face));
-        const cv::Vec3f* value = confidence_row ? confidence_row + StridedPixel(col, stride, width) : nullptr;
+        const cv::Vec3f* value =
+            confidence_row ? confidence_row + (StridedPixel(origin.x + col, stride, width) - confidence_origin.x) : nullptr;
         face_hits.confidence_sum[face] += value ? ((*value)[0] + (*value)[1] + (*value)[2]) / 3.0f : 1.0f;
       }
     }
@@ -249,10 +333,14 @@ FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency&
         const Eigen::Vector2d pixel = view.camera.ImgFromCam(centroid_in_cam);
         const int col = static_cast<int>(std::floor(pixel.x())), row = static_cast<int>(std::floor(pixel.y()));
         if (!(col >= 0 && row >= 0 && col < width && row < height)) return;
-        const float depth = maps.depth.at<float>(row / stride, col / stride);
+        const int map_col = col / stride - origin.x, map_row = row / stride - origin.y;
+        if (!(map_col >= 0 && map_row >= 0 && map_col < maps.depth.cols && map_row < maps.depth.rows)) return;
+        const float depth = maps.depth.at<float>(map_row, map_col);
         if (!(std::abs(depth - centroid_in_cam.z()) <= 0.01 * centroid_in_cam.z())) return;
-        if (!confidence.empty()) {
-          const cv::Vec3f& value = confidence.at<cv::Vec3f>(row, col);
+        const int confidence_col = col - confidence_origin.x, confidence_row = row - confidence_origin.y;
+        if (!confidence.empty() && confidence_col >= 0 && confidence_row >= 0 && confidence_col < confidence.cols &&
+            confidence_row < confidence.rows) {
+          const cv::Vec3f& value = confidence.at<cv::Vec3f>(confidence_row, confidence_col);
           mean_confidence = (value[0] + value[1] + value[2]) / 3.0;
         }
       }
@@ -263,9 +351,10 @@ FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency&
     };
     for (std::size_t i = 0; i < num_hit; ++i) offer(face_hits.touched[i], true);
     for (std::uint32_t face : subpixel) offer(face, false);
-    progress.Advance();
+    if (progress) progress->Advance();
   });
-  progress.Finish();
+  if (!progress) return candidates;
+  progress->Finish();
   std::string strides;
   for (std::size_t stride = 1; stride < views_by_stride.size(); ++stride) {
     if (views_by_stride[stride] == 0) continue;

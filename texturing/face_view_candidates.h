@@ -25,7 +25,11 @@
 // same accuracy against the true albedo (README, 'Visibility').
 
 #include <cstdint>
+#include <optional>
 #include <vector>
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
 
 #include "lib/geometry/mesh.h"
 #include "texturing/face_adjacency.h"
@@ -52,6 +56,8 @@ struct FaceViewCandidatesOptions {
   int rays_per_face = 8;
   // Threads over views; <= 0 means all cores. Results do not depend on it.
   int num_threads = 0;
+  // Progress and the strides in the log (a tiled bake, which runs a pass per tile, reports its own).
+  bool show_progress = true;
   void Check() const;
 };
 
@@ -93,7 +99,28 @@ class FaceViewCandidates {
   std::vector<std::uint8_t> counts_;
 };
 
-// Streams every view once (ray cast + confidence). Throws what the image source throws.
+// The views a visibility pass casts (indices into the views, ascending) and the stride of every view.
+// For a part of a mesh (one tile of a tiled bake, with the surface around it that may hide it) the part's
+// views are cast at the strides of the whole mesh, so that the part's faces get the candidates they would
+// get in the whole.
+struct VisibilityCasts {
+  std::vector<std::uint32_t> views;
+  std::vector<int> stride_of_view;  // one per view
+  // When set, only the faces within this box need candidates: each view is cast over the window its
+  // projection covers (with a margin of 3 rays, which a windowed cast renders as the whole image does),
+  // or whole when part of the box lies behind the camera.
+  std::optional<Eigen::AlignedBox3d> faces_within;
+};
+
+// Every view, at the strides VisibilityStride gives on `mesh`.
+VisibilityCasts CastEveryView(const Mesh& mesh, const std::vector<TextureView>& views, int rays_per_face);
+
+// Streams every view of `casts` once (ray cast + confidence). Throws what the image source throws.
+FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency& adjacency,
+                                          const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
+                                          const ViewImageSource& source, const FaceViewCandidatesOptions& options,
+                                          const VisibilityCasts& casts);
+// The same for every view (CastEveryView).
 FaceViewCandidates FindFaceViewCandidates(const Mesh& mesh, const FaceAdjacency& adjacency,
                                           const std::vector<TextureView>& views, const ViewRaycaster& raycaster,
                                           const ViewImageSource& source, const FaceViewCandidatesOptions& options);

@@ -70,11 +70,16 @@ Eigen::Vector3f SeamCorrections::At(std::uint32_t vertex, std::uint32_t view) co
   return values_[static_cast<std::size_t>(found - views_.begin())];
 }
 
+void SeamCorrections::AppendAt(std::uint32_t vertex, std::vector<std::pair<std::uint32_t, Eigen::Vector3f>>* out) const {
+  if (values_.empty() || vertex + 1 >= offsets_.size()) return;
+  for (std::uint32_t i = offsets_[vertex]; i < offsets_[vertex + 1]; ++i) out->emplace_back(views_[i], values_[i]);
+}
+
 SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
                            const ViewRaycaster& raycaster, const ViewImageSource& source,
                            const FaceViewCandidates& candidates, const std::vector<std::uint32_t>& view_of_face,
                            const TexelFusionOptions& fusion, const SeamLevellingOptions& options,
-                           SeamLevellingSummary* summary) {
+                           SeamLevellingSummary* summary, const SeamLevellingPart* part) {
   options.Check();
   const auto start = std::chrono::steady_clock::now();
   SeamLevellingSummary local;
@@ -84,14 +89,18 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   if (!options.enabled) return corrections;
   out.enabled = true;
   if (view_of_face.size() != mesh.faces.size()) throw std::invalid_argument("seam levelling: one view per face needed");
+  if (part && part->levelled_here.size() != mesh.faces.size()) {
+    throw std::invalid_argument("seam levelling: the part must say of every face whether it is levelled");
+  }
+  const auto here = [&](std::uint32_t f) { return !part || part->levelled_here[f]; };
 
-  // The seam points, face pair by face pair in ascending order.
+  // The seam points with a side here, face pair by face pair in ascending order.
   std::vector<SeamPoint> points;
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
     if (view_of_face[f] == kNoView) continue;
     for (const std::uint32_t* n = adjacency.begin(f); n != adjacency.end(f); ++n) {
       const std::uint32_t g = *n;
-      if (g < f || view_of_face[g] == kNoView || view_of_face[g] == view_of_face[f]) continue;
+      if (g < f || view_of_face[g] == kNoView || view_of_face[g] == view_of_face[f] || !(here(f) || here(g))) continue;
       std::array<std::uint32_t, 2> shared{};
       int num_shared = 0;
       for (std::uint32_t v : mesh.faces[f]) {
@@ -102,7 +111,8 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
       for (float t : kEdgePositions) points.push_back({f, g, shared[0], shared[1], t});
     }
   }
-  if (points.empty()) return corrections;
+  // A part with no seam of its own still shows, near its border, the corrections settled beyond it.
+  if (points.empty() && !part) return corrections;
 
   // Their colours through each side's face: a texel layout of two texels per point, face by face.
   const std::size_t num_entries = 2 * points.size();
@@ -149,7 +159,7 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   }
   TexelFusionOptions point_fusion = fusion;
   point_fusion.progress_label = "texture: seam levelling";
-  FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, point_fusion, pages);
+  if (!points.empty()) FuseTexels(mesh, views, raycaster, source, candidates, view_of_face, layout, point_fusion, pages);
   const auto colour_of = [&](std::size_t entry) {
     const AtlasTexel& texel = layout.texels[texel_of_entry[entry]];
     const cv::Vec3f& c = pages[texel.page].at<cv::Vec3f>(texel.y, texel.x);
@@ -173,21 +183,30 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     }
   }
   const auto reached = [&](std::uint32_t v) { return options.fade == 0.0 || ring[v] <= reach; };
-
-  // The unknowns: (vertex, view) for the views of the faces around each vertex reached.
-  corrections.offsets_.assign(mesh.vertices.size() + 1, 0);
+  // Per vertex: used by a face levelled here (1), by a labelled face levelled before (2).
+  std::vector<std::uint8_t> used_by(mesh.vertices.size(), 0);
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
     if (view_of_face[f] == kNoView) continue;
-    for (std::uint32_t v : mesh.faces[f]) corrections.offsets_[v + 1] += reached(v);
+    for (std::uint32_t v : mesh.faces[f]) used_by[v] = static_cast<std::uint8_t>(used_by[v] | (here(f) ? 1 : 2));
+  }
+  // Face f's correction at its vertex v is held: a face here's where the corrections reach; a face
+  // before's where it meets a face here (its value is then the settled one).
+  const auto held = [&](std::uint32_t f, std::uint32_t v) {
+    return view_of_face[f] != kNoView && (used_by[v] & 1) && (!here(f) || reached(v));
+  };
+
+  // The corrections held: (vertex, view) for the views of the faces around each vertex.
+  corrections.offsets_.assign(mesh.vertices.size() + 1, 0);
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+    for (std::uint32_t v : mesh.faces[f]) corrections.offsets_[v + 1] += held(f, v);
   }
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) corrections.offsets_[v + 1] += corrections.offsets_[v];
   {
     std::vector<std::uint32_t> fill(corrections.offsets_.begin(), corrections.offsets_.end() - 1);
     std::vector<std::uint32_t> all_views(corrections.offsets_.back());
     for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
-      if (view_of_face[f] == kNoView) continue;
       for (std::uint32_t v : mesh.faces[f]) {
-        if (reached(v)) all_views[fill[v]++] = view_of_face[f];
+        if (held(f, v)) all_views[fill[v]++] = view_of_face[f];
       }
     }
     // Distinct views per vertex, compacted in place of the counts.
@@ -203,17 +222,34 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     all_views.resize(kept);
     corrections.views_ = std::move(all_views);
   }
-  const std::size_t n = corrections.views_.size();
-  // The unknown of (vertex, view), -1 for a vertex the corrections do not reach.
+  // The correction of (vertex, view), -1 when none is held (it is 0).
   const auto index = [&](std::uint32_t vertex, std::uint32_t view) {
-    if (!reached(vertex)) return -1;
     const auto begin = corrections.views_.begin() + corrections.offsets_[vertex];
     const auto end = corrections.views_.begin() + corrections.offsets_[vertex + 1];
-    return static_cast<int>(std::lower_bound(begin, end, view) - corrections.views_.begin());
+    const auto found = std::lower_bound(begin, end, view);
+    return found != end && *found == view ? static_cast<int>(found - corrections.views_.begin()) : -1;
   };
+  // The settled ones (those a face before has) are not unknowns; the others are, in order.
+  corrections.values_.assign(corrections.views_.size(), Eigen::Vector3f::Zero());
+  std::vector<int> unknown(corrections.views_.size(), 0);
+  if (part) {
+    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+      if (here(f)) continue;
+      for (std::uint32_t v : mesh.faces[f]) {
+        const int c = held(f, v) ? index(v, view_of_face[f]) : -1;
+        if (c < 0 || unknown[c] < 0) continue;
+        unknown[c] = -1;
+        corrections.values_[c] = part->settled(v, view_of_face[f]);
+      }
+    }
+  }
+  std::size_t n = 0;
+  for (int& u : unknown) u = u < 0 ? -1 : static_cast<int>(n++);
+  const auto unknown_of = [&](int c) { return c < 0 ? -1 : unknown[c]; };
+  const auto value_of = [&](int c) { return c < 0 ? Eigen::Vector3f::Zero().eval() : corrections.values_[c]; };
 
   // The seam points seen from both sides, and the step between their colours.
-  std::vector<std::array<int, 4>> point_unknowns;
+  std::vector<std::array<int, 4>> point_corrections;
   std::vector<Eigen::Vector3d> point_step;  // c_b - c_a
   std::vector<float> point_t;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -221,7 +257,7 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     const Eigen::Vector3d step = colour_of(2 * i + 1) - colour_of(2 * i);
     if (!step.allFinite()) continue;
     const std::uint32_t a = view_of_face[point.face_a], b = view_of_face[point.face_b];
-    point_unknowns.push_back({index(point.p, a), index(point.q, a), index(point.p, b), index(point.q, b)});
+    point_corrections.push_back({index(point.p, a), index(point.q, a), index(point.p, b), index(point.q, b)});
     point_step.push_back(step);
     point_t.push_back(point.t);
   }
@@ -231,18 +267,20 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   layout = {};
   out.num_unknowns = n;
   out.num_seam_points = point_step.size();
-  if (point_step.empty()) return {};
-  // What each point's step is after corrections `g` (mean over channels of the absolute value).
-  const auto remaining_step = [&](std::size_t i, const std::vector<Eigen::Vector3f>& g) {
+  if (point_step.empty()) return part ? corrections : SeamCorrections();
+  // What each point's step is after the corrections (mean over channels of the absolute value); before
+  // any, with `corrected` false.
+  const auto remaining_step = [&](std::size_t i, bool corrected) {
     const float t = point_t[i];
-    const std::array<int, 4>& u = point_unknowns[i];
+    const std::array<int, 4>& c = point_corrections[i];
     const Eigen::Vector3f change =
-        g.empty() ? Eigen::Vector3f::Zero()
-                  : Eigen::Vector3f((1.0f - t) * g[u[0]] + t * g[u[1]] - (1.0f - t) * g[u[2]] - t * g[u[3]]);
+        !corrected ? Eigen::Vector3f::Zero()
+                   : Eigen::Vector3f((1.0f - t) * value_of(c[0]) + t * value_of(c[1]) - (1.0f - t) * value_of(c[2]) -
+                                     t * value_of(c[3]));
     return (point_step[i] - change.cast<double>()).cwiseAbs().mean();
   };
   std::vector<double> residuals(point_step.size());
-  for (std::size_t i = 0; i < residuals.size(); ++i) residuals[i] = remaining_step(i, {});
+  for (std::size_t i = 0; i < residuals.size(); ++i) residuals[i] = remaining_step(i, false);
   for (double r : residuals) out.step_before += r / double(residuals.size());
   // Robust scale: the steps' median absolute value (as a standard deviation), but no less than a step no
   // one can see (about one 8-bit sRGB level in mid-tones, in linear albedo).
@@ -251,12 +289,21 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   const double scale = std::max(1.4826 * sorted[sorted.size() / 2], kInvisibleStep);
   sorted = {};
 
-  // The normal equations (seam_levelling_system.h): the chart edges once, the seam points each round.
+  // The normal equations (seam_levelling_system.h) in the unknowns: the chart edges of the faces here
+  // once (an edge to a settled correction pulls towards its value), the seam points each round (their
+  // steps less what the settled corrections already change).
   SeamLevellingSystem system(n, options.fade, options.smoothness);
+  ChannelVectors edge_rhs = ChannelVectors::Zero(static_cast<Eigen::Index>(n), 3);
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
-    if (view_of_face[f] == kNoView) continue;
+    if (view_of_face[f] == kNoView || !here(f)) continue;
     const Mesh::Face& face = mesh.faces[f];
-    for (int k = 0; k < 3; ++k) system.AddEdge(index(face[k], view_of_face[f]), index(face[(k + 1) % 3], view_of_face[f]));
+    for (int k = 0; k < 3; ++k) {
+      const int ci = index(face[k], view_of_face[f]), cj = index(face[(k + 1) % 3], view_of_face[f]);
+      const int i = unknown_of(ci), j = unknown_of(cj);
+      system.AddEdge(i, j);
+      if (i >= 0 && j < 0) edge_rhs.row(i) += options.smoothness * value_of(cj).cast<double>().transpose();
+      if (j >= 0 && i < 0) edge_rhs.row(j) += options.smoothness * value_of(ci).cast<double>().transpose();
+    }
   }
   system.FinishEdges();
   // Iteratively reweighted least squares with Cauchy weights on the seam points: a step that texture
@@ -264,17 +311,26 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   ChannelVectors rhs(static_cast<Eigen::Index>(n), 3), solution;
   for (int round = 0; round < kRobustRounds; ++round) {
     system.ClearPoints();
-    rhs.setZero();
+    rhs = edge_rhs;
     for (std::size_t i = 0; i < point_step.size(); ++i) {
       const double weight = 1.0 / (1.0 + (residuals[i] / scale) * (residuals[i] / scale));
       const std::array<double, 4> coefficients = SeamPointCoefficients(point_t[i]);
-      system.AddPoint(point_unknowns[i], point_t[i], weight);
-      for (int r = 0; r < 4; ++r) rhs.row(point_unknowns[i][r]) += weight * coefficients[r] * point_step[i].transpose();
+      std::array<int, 4> unknowns;
+      Eigen::RowVector3d step = point_step[i].transpose();
+      for (int r = 0; r < 4; ++r) {
+        unknowns[r] = unknown_of(point_corrections[i][r]);
+        if (unknowns[r] < 0) step -= coefficients[r] * value_of(point_corrections[i][r]).cast<double>().transpose();
+      }
+      system.AddPoint(unknowns, point_t[i], weight);
+      for (int r = 0; r < 4; ++r) {
+        if (unknowns[r] >= 0) rhs.row(unknowns[r]) += weight * coefficients[r] * step;
+      }
     }
     out.iterations = std::max(out.iterations, system.Solve(rhs, options.max_iterations, kTolerance, &solution));
-    corrections.values_.resize(n);
-    for (std::size_t u = 0; u < n; ++u) corrections.values_[u] = solution.row(Eigen::Index(u)).transpose().cast<float>();
-    for (std::size_t i = 0; i < residuals.size(); ++i) residuals[i] = remaining_step(i, corrections.values_);
+    for (std::size_t c = 0; c < unknown.size(); ++c) {
+      if (unknown[c] >= 0) corrections.values_[c] = solution.row(Eigen::Index(unknown[c])).transpose().cast<float>();
+    }
+    for (std::size_t i = 0; i < residuals.size(); ++i) residuals[i] = remaining_step(i, true);
   }
   for (double r : residuals) out.step_after += r / double(residuals.size());
 

@@ -38,7 +38,9 @@
 // depend on the thread count).
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -72,17 +74,29 @@ struct SeamLevellingSummary {
   double seconds = 0.0;
 };
 
+// A part of a larger mesh levelled piece by piece (one tile of a tiled bake, with the surface around it):
+// the faces levelled here, and what the pieces levelled before settled. The seam points with a side here
+// are levelled; a correction (vertex, view) that a face levelled before also has is held at the value it
+// settled there (0 when it had none), so that the piece's border shows the same corrections from both
+// sides. The faces of pieces not levelled yet have no label (kNoView) here.
+struct SeamLevellingPart {
+  std::vector<bool> levelled_here;  // one per face of the mesh
+  std::function<Eigen::Vector3f(std::uint32_t vertex, std::uint32_t view)> settled;
+};
+
 // The corrections, by vertex and view; zero for pairs that have none.
 class SeamCorrections {
  public:
   bool empty() const { return values_.empty(); }
   Eigen::Vector3f At(std::uint32_t vertex, std::uint32_t view) const;
+  // The views with a correction at `vertex`, and the corrections, appended to `out`.
+  void AppendAt(std::uint32_t vertex, std::vector<std::pair<std::uint32_t, Eigen::Vector3f>>* out) const;
 
  private:
   friend SeamCorrections LevelSeams(const Mesh&, const FaceAdjacency&, const std::vector<TextureView>&,
                                     const ViewRaycaster&, const ViewImageSource&, const FaceViewCandidates&,
                                     const std::vector<std::uint32_t>&, const TexelFusionOptions&,
-                                    const SeamLevellingOptions&, SeamLevellingSummary*);
+                                    const SeamLevellingOptions&, SeamLevellingSummary*, const SeamLevellingPart*);
   // The views of the faces around vertex v: views_[offsets_[v] .. offsets_[v + 1]), ascending; values_ alike.
   std::vector<std::uint32_t> offsets_;
   std::vector<std::uint32_t> views_;
@@ -93,12 +107,13 @@ class SeamCorrections {
 std::string DescribeSeamLevelling(const SeamLevellingSummary& summary);
 
 // `view_of_face`: the chosen view of every face of `mesh` (kNoView: untextured). Empty corrections when
-// options.enabled is false or there is no seam. Throws what the image source throws.
+// options.enabled is false or there is no seam. `part`: null for a whole mesh. Throws what the image
+// source throws.
 SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
                            const ViewRaycaster& raycaster, const ViewImageSource& source,
                            const FaceViewCandidates& candidates, const std::vector<std::uint32_t>& view_of_face,
                            const TexelFusionOptions& fusion, const SeamLevellingOptions& options,
-                           SeamLevellingSummary* summary);
+                           SeamLevellingSummary* summary, const SeamLevellingPart* part = nullptr);
 
 // Adds the corrections to fused texels (`pages` as FuseTexels writes them): each texel of a face gets the
 // barycentric mix of its corners' corrections for the face's view, clamped at 0; texels without colour

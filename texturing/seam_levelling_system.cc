@@ -36,7 +36,9 @@ void SeamLevellingSystem::FinishEdges() {
 
 void SeamLevellingSystem::AddPoint(const std::array<int, 4>& unknowns, float t, double weight) {
   const std::array<double, 4> c = SeamPointCoefficients(t);
-  for (int r = 0; r < 4; ++r) points_diagonal_[unknowns[r]] += weight * c[r] * c[r];
+  for (int r = 0; r < 4; ++r) {
+    if (unknowns[r] >= 0) points_diagonal_[unknowns[r]] += weight * c[r] * c[r];
+  }
   points_.push_back({unknowns, t, weight});
 }
 
@@ -57,8 +59,12 @@ void SeamLevellingSystem::Apply(const ChannelVectors& x, ChannelVectors* y) cons
   for (const Point& point : points_) {
     const std::array<double, 4> c = SeamPointCoefficients(point.t);
     Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-    for (int r = 0; r < 4; ++r) sum += c[r] * x.row(point.unknowns[r]);
-    for (int r = 0; r < 4; ++r) y->row(point.unknowns[r]) += point.weight * c[r] * sum;
+    for (int r = 0; r < 4; ++r) {
+      if (point.unknowns[r] >= 0) sum += c[r] * x.row(point.unknowns[r]);
+    }
+    for (int r = 0; r < 4; ++r) {
+      if (point.unknowns[r] >= 0) y->row(point.unknowns[r]) += point.weight * c[r] * sum;
+    }
   }
 }
 

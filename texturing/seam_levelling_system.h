@@ -46,7 +46,8 @@ class SeamLevellingSystem {
   void FinishEdges();
 
   // The seam points' terms: the point at t along its edge, its unknowns (p, a), (q, a), (p, b), (q, b)
-  // (all >= 0) and its weight. ClearPoints() removes them all (for the next round of reweighting).
+  // (-1 for a correction that is not an unknown: its part of the step is in the right-hand side) and its
+  // weight. ClearPoints() removes them all (for the next round of reweighting).
   void AddPoint(const std::array<int, 4>& unknowns, float t, double weight);
   void ClearPoints();
 

@@ -74,20 +74,32 @@ TextureBakingResult BakeTexture(const Mesh& mesh, const std::vector<TextureView>
 
 ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
                         const ViewRaycaster& raycaster, const ViewImageSource& source,
-                        const TextureBakingOptions& options) {
+                        const TextureBakingOptions& options, const ViewChoicePart* part) {
   auto start = std::chrono::steady_clock::now();
   FaceViewCandidatesOptions visibility = options.visibility;
   visibility.num_threads = options.num_threads;
-  ChosenViews chosen{FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility), {}, {}, {}, 0.0, 0.0};
+  visibility.show_progress = visibility.show_progress && !part;
+  ChosenViews chosen{part ? FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility, part->casts)
+                          : FindFaceViewCandidates(mesh, adjacency, views, raycaster, source, visibility),
+                     {}, {}, {}, 0.0, 0.0};
   chosen.seconds_visibility = SecondsSince(start);
   start = std::chrono::steady_clock::now();
-  chosen.selection = SelectViews(chosen.candidates, adjacency, options.selection);
+  chosen.selection = SelectViews(chosen.candidates, adjacency, options.selection,
+                                 part ? part->given : std::vector<std::uint32_t>());
   chosen.seconds_selection = SecondsSince(start);
   chosen.candidates.DropQualities();
   TexelFusionOptions fusion = options.fusion;
   fusion.num_threads = options.num_threads;
+  fusion.show_progress = fusion.show_progress && !part;
+  SeamLevellingPart levelling_part;
+  if (part) {
+    levelling_part.levelled_here.resize(mesh.faces.size());
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) levelling_part.levelled_here[f] = part->given[f] == kChooseView;
+    levelling_part.settled = part->settled;
+  }
   chosen.corrections = LevelSeams(mesh, adjacency, views, raycaster, source, chosen.candidates,
-                                  chosen.selection.view_of_face, fusion, options.levelling, &chosen.levelling);
+                                  chosen.selection.view_of_face, fusion, options.levelling, &chosen.levelling,
+                                  part ? &levelling_part : nullptr);
   return chosen;
 }
 

@@ -92,9 +92,19 @@ struct ChosenViews {
   double seconds_visibility = 0.0;
   double seconds_selection = 0.0;
 };
+// A piece of a larger mesh whose views are chosen piece by piece (tile_views.h): the views to cast and
+// their strides (face_view_candidates.h VisibilityCasts), each face's given label (view_selection.h
+// SelectViews: kChooseView for the faces chosen here, whose seams are levelled here) and the seam
+// corrections the pieces before settled (seam_levelling.h SeamLevellingPart).
+struct ViewChoicePart {
+  VisibilityCasts casts;
+  std::vector<std::uint32_t> given;
+  std::function<Eigen::Vector3f(std::uint32_t vertex, std::uint32_t view)> settled;
+};
+// `part`: null for a whole mesh.
 ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const std::vector<TextureView>& views,
                         const ViewRaycaster& raycaster, const ViewImageSource& source,
-                        const TextureBakingOptions& options);
+                        const TextureBakingOptions& options, const ViewChoicePart* part = nullptr);
 
 // Steps 3 to 7 for `faces` of the mesh (ascending, each once) with the views chosen for the whole mesh
 // (with `options` as chosen): the result's mesh has only those faces, in that order, and the vertices they

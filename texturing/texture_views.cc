@@ -64,8 +64,8 @@ void ViewRaycaster::Render(const TextureView& view, GeometryMaps* maps, const cv
   scene_.Render(RaysFor(view.camera), view.cam_from_world, DepthAndFaceIds(window), maps);
 }
 
-void ViewRaycaster::RenderStrided(const TextureView& view, int stride, GeometryMaps* maps) const {
-  scene_.Render(RaysFor(view.camera, stride), view.cam_from_world, DepthAndFaceIds(cv::Rect()), maps);
+void ViewRaycaster::RenderStrided(const TextureView& view, int stride, GeometryMaps* maps, const cv::Rect& window) const {
+  scene_.Render(RaysFor(view.camera, stride), view.cam_from_world, DepthAndFaceIds(window), maps);
 }
 
 void ViewRaycaster::CastDepths(const TextureView& view, const std::vector<cv::Point>& pixels,

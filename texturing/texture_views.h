@@ -69,7 +69,8 @@ class ViewRaycaster {
 
   // Depth and face id of every `stride`-th pixel of `view` in each direction (CameraRays::Strided: maps
   // of ceil(width / stride) x ceil(height / stride)). `stride` 1 is Render's whole view.
-  void RenderStrided(const TextureView& view, int stride, GeometryMaps* maps) const;
+  // `window` (in the strided table's pixels; empty: all) as for Render.
+  void RenderStrided(const TextureView& view, int stride, GeometryMaps* maps, const cv::Rect& window = cv::Rect()) const;
 
   // Depth of each of `pixels` of `view` (RaycastScene::CastDepths), into `depths`. One thread.
   void CastDepths(const TextureView& view, const std::vector<cv::Point>& pixels, std::vector<float>* depths) const;

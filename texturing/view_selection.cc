@@ -17,7 +17,7 @@ constexpr std::uint32_t kInRegion = kNoView - 2;
 // A face's labels index its candidates, at most 255 of them.
 constexpr std::uint8_t kNoLabel = 255;
 
-bool IsView(std::uint32_t label) { return label < kInRegion; }
+bool IsView(std::uint32_t label) { return label < kChooseView; }
 
 double DataCost(const FaceViewCandidates& candidates, std::uint32_t f, std::size_t i, double max_data_cost) {
   return std::min(max_data_cost, std::log(double(candidates.Quality(f, 0)) / double(candidates.Quality(f, i))));
@@ -175,17 +175,20 @@ class Region {
 
 // Data and Potts energy of the labelling that gives face f (with candidates) its `label_index(f)`-th
 // candidate.
+// Only the faces `solved` says (all with an empty `solved`).
 template <typename LabelIndex>
 void AddEnergy(const FaceViewCandidates& candidates, const FaceAdjacency& adjacency, const ViewSelectionOptions& options,
-               const LabelIndex& label_index, double* data_cost, double* smoothness_cost) {
+               const std::vector<bool>& solved, const LabelIndex& label_index, double* data_cost,
+               double* smoothness_cost) {
   *data_cost = 0.0;
   *smoothness_cost = 0.0;
+  const auto counted = [&](std::uint32_t f) { return candidates.NumViews(f) > 0 && (solved.empty() || solved[f]); };
   for (std::uint32_t f = 0; f < candidates.NumFaces(); ++f) {
-    if (candidates.NumViews(f) == 0) continue;
+    if (!counted(f)) continue;
     const std::size_t l = label_index(f);
     *data_cost += DataCost(candidates, f, l, options.max_data_cost);
     for (const std::uint32_t* n = adjacency.begin(f); n != adjacency.end(f); ++n) {
-      if (*n > f && candidates.NumViews(*n) > 0 && candidates.Views(f)[l] != candidates.Views(*n)[label_index(*n)]) {
+      if (*n > f && counted(*n) && candidates.Views(f)[l] != candidates.Views(*n)[label_index(*n)]) {
         *smoothness_cost += options.smoothness;
       }
     }
@@ -205,16 +208,25 @@ void ViewSelectionOptions::Check() const {
 }
 
 ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjacency& adjacency,
-                          const ViewSelectionOptions& options) {
+                          const ViewSelectionOptions& options, const std::vector<std::uint32_t>& given) {
   options.Check();
   if (adjacency.NumFaces() != candidates.NumFaces()) {
     throw std::invalid_argument("view selection: adjacency and candidates are for different meshes");
+  }
+  if (!given.empty() && given.size() != candidates.NumFaces()) {
+    throw std::invalid_argument("view selection: one given label per face needed");
   }
   const auto num_faces = static_cast<std::uint32_t>(candidates.NumFaces());
   ViewSelection selection;
   std::vector<std::uint32_t>& labels = selection.view_of_face;
   labels.resize(num_faces);
-  for (std::uint32_t f = 0; f < num_faces; ++f) labels[f] = candidates.NumViews(f) > 0 ? kUnsolved : kNoView;
+  std::vector<bool> solved;
+  if (!given.empty()) solved.resize(num_faces);
+  for (std::uint32_t f = 0; f < num_faces; ++f) {
+    const bool choose = given.empty() || given[f] == kChooseView;
+    if (!given.empty()) solved[f] = choose;
+    labels[f] = !choose ? given[f] : candidates.NumViews(f) > 0 ? kUnsolved : kNoView;
+  }
   for (std::uint32_t seed = 0; seed < num_faces; ++seed) {
     if (labels[seed] != kUnsolved) continue;
     Region region(candidates, adjacency, options, seed, labels);
@@ -226,8 +238,8 @@ ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjace
     while (candidates.Views(f)[l] != labels[f]) ++l;
     return l;
   };
-  AddEnergy(candidates, adjacency, options, chosen, &selection.data_cost, &selection.smoothness_cost);
-  AddEnergy(candidates, adjacency, options, [](std::uint32_t) { return std::size_t{0}; },
+  AddEnergy(candidates, adjacency, options, solved, chosen, &selection.data_cost, &selection.smoothness_cost);
+  AddEnergy(candidates, adjacency, options, solved, [](std::uint32_t) { return std::size_t{0}; },
             &selection.best_view_data_cost, &selection.best_view_smoothness_cost);
   return selection;
 }

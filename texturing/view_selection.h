@@ -55,7 +55,13 @@ struct ViewSelection {
   std::size_t num_regions = 0;
 };
 
+// `given`, for a part of a larger mesh solved piece by piece (one tile of a tiled bake with the surface
+// around it): empty, or one entry per face, kChooseView for the faces to label here and otherwise the
+// face's label as it is already known: a view (chosen with the pieces solved before; its Potts terms join
+// its neighbours' data terms, as between regions) or kNoView (not labelled here, and no neighbour of the
+// faces solved). The result keeps the given labels; its energies are those of the faces labelled here.
+constexpr std::uint32_t kChooseView = kNoView - 3;
 ViewSelection SelectViews(const FaceViewCandidates& candidates, const FaceAdjacency& adjacency,
-                          const ViewSelectionOptions& options);
+                          const ViewSelectionOptions& options, const std::vector<std::uint32_t>& given = {});
 
 }  // namespace lutex

@@ -9,7 +9,11 @@ LoadedDive::LoadedDive(const std::filesystem::path& workspace_root, const std::f
     : workspace_(FindWorkspace(workspace_root)),
       model_(ReadSparseModel(workspace_.sparse_dir)),
       mesh_path_(mesh_path),
-      mesh_(ReadMesh(mesh_path)),
-      scene_(std::make_unique<RaycastScene>(mesh_)) {}
+      mesh_(ReadMesh(mesh_path)) {}
+
+const RaycastScene& LoadedDive::scene() const {
+  std::call_once(scene_built_, [this] { scene_ = std::make_unique<RaycastScene>(mesh_); });
+  return *scene_;
+}
 
 }  // namespace lutex

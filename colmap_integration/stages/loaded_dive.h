@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <mutex>
 
 #include "colmap_integration/io/workspace.h"
 #include "lib/geometry/mesh.h"
@@ -19,8 +20,7 @@ namespace lutex {
 
 class LoadedDive {
  public:
-  // Finds the workspace at `workspace_root` and reads its model and `mesh_path`, then builds the
-  // ray-casting scene. Throws std::runtime_error naming the file that is missing or wrong.
+  // Finds the workspace at `workspace_root` and reads its model and `mesh_path`. Throws std::runtime_error naming the file that is missing or wrong.
   LoadedDive(const std::filesystem::path& workspace_root, const std::filesystem::path& mesh_path);
   LoadedDive(const LoadedDive&) = delete;
   LoadedDive& operator=(const LoadedDive&) = delete;
@@ -29,14 +29,17 @@ class LoadedDive {
   const SparseModel& model() const { return model_; }
   const std::filesystem::path& mesh_path() const { return mesh_path_; }
   const Mesh& mesh() const { return mesh_; }
-  const RaycastScene& scene() const { return *scene_; }
+  // Built on first use (`lutex tiles` casts each tile's piece of the mesh instead, and needs none).
+  // Thread-safe.
+  const RaycastScene& scene() const;
 
  private:
   Workspace workspace_;
   SparseModel model_;
   std::filesystem::path mesh_path_;
   Mesh mesh_;
-  std::unique_ptr<RaycastScene> scene_;
+  mutable std::once_flag scene_built_;
+  mutable std::unique_ptr<RaycastScene> scene_;
 };
 
 }  // namespace lutex

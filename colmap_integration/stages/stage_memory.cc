@@ -39,11 +39,15 @@ MemoryEstimate TextureBakingMemory(const TextureBakingOptions& baking, std::size
 }
 
 void CheckStageMemory(const std::string& stage, const LoadedDive& dive, int num_threads, double bytes_per_pixel,
-                      std::size_t limit_bytes, MemoryEstimate extra) {
+                      std::size_t limit_bytes, MemoryEstimate extra, std::size_t indexed_faces) {
   const Mesh& mesh = dive.mesh();
+  const double faces = static_cast<double>(mesh.faces.size());
+  const double indexed = indexed_faces == 0 ? faces : std::min(faces, static_cast<double>(indexed_faces));
+  // The index copies the vertices (as floats, and as doubles relative to its origin) with its faces.
+  const double vertices_per_face = faces > 0.0 ? static_cast<double>(mesh.vertices.size()) / faces : 0.0;
   extra.Add("the mesh and its ray-casting index", 1.0,
-            static_cast<double>(mesh.vertices.size()) * (sizeof(Eigen::Vector3d) + sizeof(Eigen::Vector3f) + 12.0) +
-                static_cast<double>(mesh.faces.size()) * (sizeof(Mesh::Face) + 12.0 + kBvhBytesPerFace));
+            static_cast<double>(mesh.vertices.size()) * sizeof(Eigen::Vector3d) + faces * sizeof(Mesh::Face) +
+                indexed * (vertices_per_face * (sizeof(Eigen::Vector3f) + 12.0) + 12.0 + kBvhBytesPerFace));
   double largest_pixels = 0.0;
   for (const auto& [id, camera] : dive.model().cameras) {
     largest_pixels = std::max(largest_pixels, static_cast<double>(camera.width) * static_cast<double>(camera.height));

@@ -31,7 +31,9 @@ MemoryEstimate TextureBakingMemory(const TextureBakingOptions& baking, std::size
 // Throws std::runtime_error "`stage` needs about X (parts), more than the memory limit of Y (...)" when
 // the dive, the ray table of its largest camera, `num_threads` workers at `bytes_per_pixel` on the largest
 // image, and `extra` exceed `limit_bytes` (0: the machine's available memory).
+// `indexed_faces`: the faces whose ray-casting index the stage builds at once (0: the whole mesh's; `lutex
+// tiles` builds one for each tile's piece, texturing/tile_views.h).
 void CheckStageMemory(const std::string& stage, const LoadedDive& dive, int num_threads, double bytes_per_pixel,
-                      std::size_t limit_bytes, MemoryEstimate extra = {});
+                      std::size_t limit_bytes, MemoryEstimate extra = {}, std::size_t indexed_faces = 0);
 
 }  // namespace lutex

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <map>
 #include <iomanip>
 #include <stdexcept>
 
@@ -22,6 +23,7 @@
 #include "texturing/gltf_frame.h"
 #include "texturing/texture_transfer.h"
 #include "texturing/tile_mesh.h"
+#include "texturing/tile_views.h"
 #include "texturing/tileset_json.h"
 
 namespace lutex {
@@ -38,6 +40,9 @@ void TilesOptions::Check() const {
 }
 
 namespace {
+
+// Leaves' worth of faces in a leaf's piece, for the memory estimate (see TilesWorkspace).
+constexpr std::size_t kPieceLeaves = 4;
 
 InputsAndOutputs PathsOf(const TilesOptions& options, const Workspace& workspace) {
   InputsAndOutputs paths = ViewStageInputs(workspace, options.mesh, options.views, "the images to texture from");
@@ -69,12 +74,15 @@ struct BakedTile {
 // Bakes the tree bottom-up, writing each tile's GLB into `folder` and its entry into `tileset`.
 class TileBaker {
  public:
-  TileBaker(const LoadedDive& dive, const TileTree& tree, const std::vector<TextureView>& views,
-            const ViewImageSource& source, const ChosenViews& chosen, const TilesOptions& options, const TexturedMesh& frame, const Eigen::Matrix3d& tiles_from_model,
-            fs::path folder, Tileset& tileset, TilesSummary& summary)
-      : dive_(dive), tree_(tree), views_(views), source_(source), chosen_(chosen), raycaster_(dive.scene()), options_(options), frame_(frame), tiles_from_model_(tiles_from_model),
-        folder_(std::move(folder)), tileset_(tileset), summary_(summary) {
+  TileBaker(const TileTree& tree, const std::vector<TextureView>& views, const ViewImageSource& source,
+            TiledViewChoice& choice, const TilesOptions& options, const TexturedMesh& frame,
+            const Eigen::Matrix3d& tiles_from_model, fs::path folder, Tileset& tileset, TilesSummary& summary)
+      : tree_(tree), views_(views), source_(source), choice_(choice), options_(options), frame_(frame),
+        tiles_from_model_(tiles_from_model), folder_(std::move(folder)), tileset_(tileset), summary_(summary) {
     tileset_.tiles.resize(tree_.nodes.size());
+    for (std::size_t n = 0; n < tree_.nodes.size(); ++n) {
+      if (tree_.nodes[n].children.empty()) leaf_of_node_[n] = leaf_of_node_.size();
+    }
   }
 
   BakedTile Bake(std::size_t node_index) {
@@ -83,10 +91,13 @@ class TileBaker {
     TexturedMesh textured;
     if (node.children.empty()) {
       TextureBakingSummary baking;
-      textured = BakeFaces(dive_.mesh(), views_, raycaster_, source_, chosen_, node.faces, options_.baking,
-                           baked.geometry.source_vertex, baking);
+      const TilePiece piece = choice_.Choose(leaf_of_node_.at(node_index), source_);
+      std::vector<std::uint32_t> vertex_in_piece;
+      textured = BakeFaces(piece.piece.mesh, views_, ViewRaycaster(*piece.scene), source_, piece.chosen,
+                           piece.tile_faces, options_.baking, vertex_in_piece, baking);
+      for (std::uint32_t v : vertex_in_piece) baked.geometry.source_vertex.push_back(piece.piece.source_vertex[v]);
       baked.geometry.mesh = textured.mesh;
-      for (std::uint32_t f : node.faces) baked.view_of_face.push_back(chosen_.selection.view_of_face[f]);
+      for (std::uint32_t f : piece.tile_faces) baked.view_of_face.push_back(piece.chosen.selection.view_of_face[f]);
       baked.texel_size = baking.num_texels > 0 ? std::sqrt(TexturedArea(textured) / double(baking.num_texels))
                                                : options_.baking.charts.texel_size;
       leaf_texel_sizes_.push_back(baked.texel_size);
@@ -156,12 +167,11 @@ class TileBaker {
     });
   }
 
-  const LoadedDive& dive_;
   const TileTree& tree_;
   const std::vector<TextureView>& views_;
   const ViewImageSource& source_;
-  const ChosenViews& chosen_;
-  const ViewRaycaster raycaster_;
+  TiledViewChoice& choice_;
+  std::map<std::size_t, std::size_t> leaf_of_node_;  // the index of each leaf among the choice's tiles
   const TilesOptions& options_;
   const TexturedMesh& frame_;  // its up and georeference
   const Eigen::Matrix3d tiles_from_model_;
@@ -191,11 +201,15 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
-  MemoryEstimate baking_memory = TextureBakingMemory(options.baking, dive.mesh().faces.size());
+  // A leaf's views are chosen on its piece, the leaf and the surface around it within reach of the views
+  // that see it (tile_views.h): on the tiles benchmark's survey at most kPieceLeaves leaves' worth.
+  const std::size_t piece_faces = std::min(dive.mesh().faces.size(), kPieceLeaves * options.tree.max_faces);
+  MemoryEstimate baking_memory = TextureBakingMemory(options.baking, piece_faces);
+  baking_memory.Add("the label of every face", static_cast<double>(dive.mesh().faces.size()), sizeof(std::uint32_t));
   baking_memory.Add("the decoded-picture cache", 1.0,
                     PictureCacheBytes(dive.model(), options.views.image_encoding, options.picture_cache_bytes));
   CheckStageMemory("tiles", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,
-                   baking_memory);
+                   baking_memory, piece_faces);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   const fs::path output = options.output.empty() ? workspace.TilesDir() : options.output;
@@ -220,11 +234,11 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   LogInfo() << "tiles: " << tree.nodes.size() << " tiles, " << summary.num_leaves << " leaves of at most "
             << options.tree.max_faces << " faces, " << summary.depth << " levels below the root";
 
-  const FaceAdjacency adjacency(dive.mesh());
-  const ChosenViews chosen =
-      ChooseViews(dive.mesh(), adjacency, found.views, ViewRaycaster(dive.scene()), source, options.baking);
-  summary.seconds_views = chosen.seconds_visibility + chosen.seconds_selection + chosen.levelling.seconds;
-  summary.levelling = chosen.levelling;
+  std::vector<const std::vector<std::uint32_t>*> leaves;
+  for (const TileNode& node : tree.nodes) {
+    if (node.children.empty()) leaves.push_back(&node.faces);
+  }
+  TiledViewChoice choice(dive.mesh(), found.views, std::move(leaves), options.baking);
 
   AtomicOutputFile folder(output);
   fs::create_directories(folder.temporary_path());
@@ -232,10 +246,13 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   frame.up = summary.up.up;
   frame.georeference = georeference;
   Tileset tileset;
-  TileBaker baker(dive, tree, found.views, source, chosen, options, frame, tiles_from_model,
-                  folder.temporary_path(), tileset, summary);
+  TileBaker baker(tree, found.views, source, choice, options, frame, tiles_from_model, folder.temporary_path(),
+                  tileset, summary);
   baker.Bake(0);
   baker.FinishWriting();
+  summary.seconds_views = choice.seconds();
+  summary.levelling = choice.levelling();
+  summary.max_piece_faces = choice.max_piece_faces();
   std::vector<double> texels = baker.leaf_texel_sizes();
   std::nth_element(texels.begin(), texels.begin() + texels.size() / 2, texels.end());
   summary.leaf_texel_size = texels[texels.size() / 2];
@@ -275,7 +292,8 @@ void PrintTilesSummary(std::ostream& out, const TilesSummary& summary) {
       << std::setprecision(4) << "  texel size of the leaves: " << summary.leaf_texel_size
       << " (median); root geometric error " << summary.root_geometric_error << "\n"
       << "  seam levelling: " << DescribeSeamLevelling(summary.levelling) << "\n"
-      << std::setprecision(1) << "  time: views and seam levelling over the whole mesh " << summary.seconds_views << " s\n"
+      << std::setprecision(1) << "  time: views and seam levelling, tile by tile (at most " << summary.max_piece_faces
+      << " faces with the surface around a tile) " << summary.seconds_views << " s\n"
       << "  images: " << summary.images.string() << "\n"
       << "  georeference: " << summary.georeference.georeference.Describe() << " from " << summary.georeference.source
       << (summary.georeference.georeference.IsSet() ? " (the root transform places the tiles on the globe)\n"

@@ -6,9 +6,10 @@
 //   1. the model's up and georeference (model_up.h, workspace_georeference.h)
 //   2. a quadtree of tiles over the mesh's horizontal footprint, at most `tree.max_faces` faces a leaf
 //      (texturing/tile_tree.h)
-//   3. one view per face, chosen once for the whole mesh (texturing/texture_baker.h ChooseViews), so that
-//      labels and the colours fused from them agree across tile borders
-//   4. each leaf's faces baked with those labels and written as DIR/tiles/NAME.glb, then freed
+//   3. each leaf's views chosen on its own piece of the mesh, the leaf and the surface around it that may
+//      hide it, with the labels and seam corrections of the leaves done before fixed at its border
+//      (texturing/tile_views.h), so that labels and the colours fused from them agree across tile borders
+//   4. the leaf's faces baked with those labels and written as DIR/tiles/NAME.glb, then freed with its piece
 //   5. each parent, once its children are done: their meshes merged and simplified to the face budget
 //      with the tile's border locked (texturing/tile_mesh.h), textured at twice their coarsest texel size
 //      from their textures (texturing/texture_transfer.h; no image is read again, and a level shows the
@@ -19,7 +20,8 @@
 //      frame and a warning that the tiles will not sit on the globe.
 //
 // The folder is written under a temporary name beside DIR and renamed into place when complete.
-// Memory: the views chosen for every face (as for `lutex texture`), and one tile's bake at a time with
+// Memory: the mesh, a label per face and the corrections at the leaves' borders; one leaf's piece
+// (its ray-casting scene, adjacency and candidates) and one tile's bake at a time, with
 // at most three finished children per level of the tree (their meshes and their textures at half the
 // resolution: a quarter of their texels), plus the decoded-picture cache.
 
@@ -68,7 +70,8 @@ struct TilesSummary {
   double leaf_texel_size = 0.0;     // median over the leaves, scene units
   ModelUp up;
   WorkspaceGeoreference georeference;
-  double seconds_views = 0.0;       // visibility, view selection and seam levelling over the whole mesh
+  double seconds_views = 0.0;       // visibility, view selection and seam levelling, tile by tile
+  std::size_t max_piece_faces = 0;  // the most faces a tile's views were chosen on (tile_views.h)
   SeamLevellingSummary levelling;
   double seconds = 0.0;
 };

@@ -11,32 +11,16 @@
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/raycast/raycast_scene.h"
+#include "tests/support/rendered_views.h"
 
 namespace lutex {
 namespace {
 
-// A seafloor of 5 cm cells (two faces each) with a boulder 0.35 m high that hides part of the floor from
-// the oblique views, seen by nine cameras of 640 x 480 from 1.5 m: faces of about 140 pixels.
+// The boulder floor (rendered_views.h) seen by nine cameras of 640 x 480 from 1.5 m: faces of about 140
+// pixels.
 struct Scene {
-  Mesh mesh = MakeHeightFieldMesh(
-      [](double x, double y) {
-        return 0.35 * std::exp(-((x - 0.2) * (x - 0.2) + (y - 0.1) * (y - 0.1)) / (2 * 0.15 * 0.15)) +
-               0.03 * std::sin(3.0 * x) * std::cos(2.0 * y);
-      },
-      -1.0, 1.0, -1.0, 1.0, 40, 40);
-  std::vector<TextureView> views;
-  Scene() {
-    const Camera camera = Camera::Pinhole(1, 640, 480, 500.0, 500.0);
-    int index = 0;
-    for (double y : {-0.6, 0.0, 0.6}) {
-      for (double x : {-0.6, 0.0, 0.6}) {
-        // Each camera looks at a point between itself and the centre: the outer ones obliquely.
-        const Eigen::Vector3d centre(x, y, 1.5), target(0.4 * x, 0.4 * y, 0.0);
-        views.push_back({"view_" + std::to_string(index++), camera,
-                         CamFromWorldLookingAt(centre, (target - centre).normalized(), Eigen::Vector3d::UnitY())});
-      }
-    }
-  }
+  Mesh mesh = BoulderFloor();
+  std::vector<TextureView> views = NineViewsOfTheCentre(Camera::Pinhole(1, 640, 480, 500.0, 500.0));
 };
 
 // Casting every 3rd or 4th pixel of views whose faces cover about 140 pixels finds the same views for every face

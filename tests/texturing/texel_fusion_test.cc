@@ -14,6 +14,7 @@
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/raycast/raycast_scene.h"
+#include "tests/support/rendered_views.h"
 #include "texturing/atlas_packing.h"
 #include "texturing/face_adjacency.h"
 #include "texturing/texture_charts.h"
@@ -47,28 +48,6 @@ TextureView LookingAt(const Eigen::Vector3d& centre, const Eigen::Vector3d& targ
 
 TextureView Above(double x, double y, double height) { return LookingAt({x, y, height}, {x, y, 0.0}); }
 
-using Shader = std::function<Eigen::Vector3f(int face, const Eigen::Vector3d& point_in_world)>;
-
-// The view's image: the shader at the surface point each pixel's ray hits (black where it hits nothing).
-cv::Mat Render(const RaycastScene& scene, const TextureView& view, const Shader& shader) {
-  const CameraRays rays(view.camera, 1);
-  GeometryMapsOptions options;
-  options.num_threads = 1;
-  const GeometryMaps maps = scene.Render(rays, view.cam_from_world, options);
-  const Rigid3d world_from_cam = view.cam_from_world.Inverse();
-  cv::Mat image(maps.depth.size(), CV_32FC3, cv::Scalar::all(0));
-  for (int row = 0; row < image.rows; ++row) {
-    for (int col = 0; col < image.cols; ++col) {
-      const int face = maps.face_id.at<int>(row, col);
-      if (face < 0) continue;
-      const Eigen::Vector3d ray = rays.Direction(col, row).cast<double>();
-      const Eigen::Vector3f colour = shader(face, world_from_cam * (ray / ray.z() * double(maps.depth.at<float>(row, col))));
-      image.at<cv::Vec3f>(row, col) = cv::Vec3f(colour.x(), colour.y(), colour.z());
-    }
-  }
-  return image;
-}
-
 Shader Constant(const Eigen::Vector3f& colour) {
   return [colour](int, const Eigen::Vector3d&) { return colour; };
 }
@@ -85,7 +64,7 @@ class FusionScene {
   FusionScene(Mesh mesh, std::vector<TextureView> views, const std::vector<Shader>& shaders)
       : mesh_(std::move(mesh)), scene_(mesh_), raycaster_(scene_), views_(std::move(views)),
         candidates_(mesh_.faces.size(), 8) {
-    for (std::size_t v = 0; v < views_.size(); ++v) images_.push_back(Render(scene_, views_[v], shaders[v]));
+    for (std::size_t v = 0; v < views_.size(); ++v) images_.push_back(RenderShaded(scene_, views_[v], shaders[v]));
     source_.linear_rgb = [this](std::size_t v, const cv::Rect& window) { return ViewWindow(images_[v], window); };
     for (std::uint32_t f = 0; f < mesh_.faces.size(); ++f) {
       if (!IsTextured(mesh_, f)) continue;

@@ -12,20 +12,11 @@
 #include "lib/geometry/look_at.h"
 #include "lib/geometry/mesh_primitives.h"
 #include "lib/raycast/raycast_scene.h"
+#include "tests/support/rendered_views.h"
 #include "texturing/texture_transfer.h"
 
 namespace lutex {
 namespace {
-
-// Patches of 0.25 m, each of one colour in [0.05, 0.85]. Their edges are offset from the lines half way
-// between the cameras, where the charts of neighbouring views meet.
-Eigen::Vector3f TrueAlbedo(const Eigen::Vector3d& point_in_world) {
-  const int i = static_cast<int>(std::floor((point_in_world.x() + 0.13) / 0.25));
-  const int j = static_cast<int>(std::floor((point_in_world.y() + 0.07) / 0.25));
-  const unsigned hash = static_cast<unsigned>(i * 73856093) ^ static_cast<unsigned>(j * 19349663);
-  return {0.05f + 0.8f * float(hash % 97) / 96.0f, 0.05f + 0.8f * float((hash / 97) % 89) / 88.0f,
-          0.05f + 0.8f * float((hash / 8633) % 83) / 82.0f};
-}
 
 struct Scene {
   Mesh mesh = MakeHeightFieldMesh([](double x, double y) { return 0.08 * std::sin(2.0 * x) * std::cos(1.5 * y); },
@@ -43,26 +34,6 @@ struct Scene {
     }
   }
 };
-
-// The view's image: the true albedo of the surface seen through each pixel (0 where nothing is hit).
-cv::Mat RenderAlbedo(const RaycastScene& raycaster, const TextureView& view) {
-  const CameraRays rays(view.camera, 1);
-  GeometryMapsOptions options;
-  options.num_threads = 1;
-  const GeometryMaps maps = raycaster.Render(rays, view.cam_from_world, options);
-  const Rigid3d world_from_cam = view.cam_from_world.Inverse();
-  cv::Mat image(maps.depth.size(), CV_32FC3, cv::Scalar::all(0));
-  for (int row = 0; row < image.rows; ++row) {
-    for (int col = 0; col < image.cols; ++col) {
-      const float depth = maps.depth.at<float>(row, col);
-      if (!std::isfinite(depth)) continue;
-      const Eigen::Vector3d point_in_cam = rays.Direction(col, row).cast<double>() / rays.Direction(col, row).z() * depth;
-      const Eigen::Vector3f albedo = TrueAlbedo(world_from_cam * point_in_cam);
-      image.at<cv::Vec3f>(row, col) = cv::Vec3f(albedo.x(), albedo.y(), albedo.z());
-    }
-  }
-  return image;
-}
 
 struct RenderBackError {
   double mean = 0.0;          // over all textured pixels and channels
@@ -91,7 +62,7 @@ RenderBackError CompareThroughView(const RaycastScene& raycaster, const TextureV
       const Eigen::Vector3d point_in_cam = rays.Direction(col, row).cast<double>() / rays.Direction(col, row).z() *
                                            double(maps.depth.at<float>(row, col));
       const double error =
-          (textured.AlbedoAt(face, b[0], b[1]) - TrueAlbedo(world_from_cam * point_in_cam)).cwiseAbs().mean();
+          (textured.AlbedoAt(face, b[0], b[1]) - PatchworkAlbedo(world_from_cam * point_in_cam)).cwiseAbs().mean();
       errors.push_back(error);
       if (std::hypot(col + 0.5 - disc_centre.x(), row + 0.5 - disc_centre.y()) < disc_radius) {
         disc_sum += error;
@@ -110,7 +81,7 @@ RenderBackError CompareThroughView(const RaycastScene& raycaster, const TextureV
 class TextureBakerTest : public ::testing::Test {
  protected:
   TextureBakerTest() : raycaster_(scene_.mesh) {
-    for (const TextureView& view : scene_.views) images_.push_back(RenderAlbedo(raycaster_, view));
+    for (const TextureView& view : scene_.views) images_.push_back(RenderPatchwork(raycaster_, view));
     source_.linear_rgb = [this](std::size_t v, const cv::Rect& window) { return ViewWindow(images_[v], window); };
   }
   Scene scene_;

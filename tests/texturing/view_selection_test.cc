@@ -143,6 +143,30 @@ TEST(ViewSelection, RegionsSolvedOneAfterAnotherAgreeAcrossTheirBorders) {
   EXPECT_EQ(right_on_view_3, right);
 }
 
+// Given labels (a tile of a tiled bake after its neighbours): faces with a given view keep it and pull
+// their free neighbours towards it as a region solved before does; faces given kNoView are left out.
+// Faces 20 and 21 see view 1 slightly better (ln 1.2 = 0.18 each): alone they would not be worth two
+// seams, but with faces 0..19 given view 1 a single seam at 21 | 22 is cheaper than one at 19 | 20.
+TEST(ViewSelection, GivenLabelsStayAndPullTheirNeighbours) {
+  const Mesh mesh = Strip();
+  const FaceAdjacency adjacency(mesh);
+  std::vector<std::uint32_t> given(40, kChooseView);
+  for (std::uint32_t f = 0; f < 20; ++f) given[f] = 1;
+  given[39] = kNoView;
+  const FaceViewCandidates others = TwoViews(40, 20, 22, 1.2f);
+  const ViewSelection chosen = SelectViews(others, adjacency, {}, given);
+  for (std::uint32_t f = 0; f < 20; ++f) EXPECT_EQ(chosen.view_of_face[f], 1u) << f;
+  EXPECT_EQ(chosen.view_of_face[20], 1u);
+  EXPECT_EQ(chosen.view_of_face[21], 1u);
+  for (std::uint32_t f = 22; f < 39; ++f) EXPECT_EQ(chosen.view_of_face[f], 0u) << f;
+  EXPECT_EQ(chosen.view_of_face[39], kNoView);
+  // Without the given neighbours, the two faces are not worth the seams.
+  const ViewSelection alone = SelectViews(others, adjacency, {});
+  EXPECT_EQ(alone.view_of_face[20], 0u);
+  EXPECT_EQ(alone.view_of_face[21], 0u);
+  EXPECT_THROW(SelectViews(others, adjacency, {}, std::vector<std::uint32_t>(3, kChooseView)), std::invalid_argument);
+}
+
 TEST(ViewSelection, ARegionMustHoldAFace) {
   const Mesh mesh = Strip();
   const FaceAdjacency adjacency(mesh);

@@ -1,0 +1,167 @@
+#include "texturing/tile_views.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "texturing/face_adjacency.h"
+#include "texturing/view_selection.h"
+
+namespace lutex {
+
+namespace {
+
+// Points sampled along each side of an image for its extent (a distortion bends the sides between them).
+constexpr int kBorderSamples = 16;
+// The extent grows by this fraction of its width on each side: a margin for the bending between samples.
+constexpr double kExtentMargin = 0.05;
+
+Eigen::AlignedBox3d FaceBox(const Mesh& mesh, std::uint32_t face) {
+  Eigen::AlignedBox3d box;
+  for (std::uint32_t v : mesh.faces[face]) box.extend(mesh.vertices[v]);
+  return box;
+}
+
+std::uint64_t SettledKey(std::uint32_t vertex, std::uint32_t view) { return std::uint64_t(vertex) << 32 | view; }
+
+}  // namespace
+
+TiledViewChoice::TiledViewChoice(const Mesh& mesh, const std::vector<TextureView>& views,
+                                 std::vector<const std::vector<std::uint32_t>*> tiles,
+                                 const TextureBakingOptions& options)
+    : mesh_(mesh), views_(views), tiles_(std::move(tiles)), options_(options),
+      strides_(CastEveryView(mesh, views, options.visibility.rays_per_face)),
+      view_of_face_(mesh.faces.size(), kChooseView) {
+  options_.Check();
+  std::size_t num_faces = 0;
+  for (const std::vector<std::uint32_t>* faces : tiles_) {
+    Eigen::AlignedBox3d box;
+    for (std::uint32_t f : *faces) {
+      if (f >= mesh.faces.size()) throw std::invalid_argument("tiled views: a tile's face is not in the mesh");
+      box.extend(FaceBox(mesh, f));
+    }
+    tile_boxes_.push_back(box);
+    num_faces += faces->size();
+  }
+  if (num_faces != mesh.faces.size()) throw std::invalid_argument("tiled views: the tiles must hold each face once");
+  for (const Mesh::Face& face : mesh.faces) {
+    for (int k = 0; k < 3; ++k) {
+      longest_edge_ = std::max(longest_edge_, (mesh.vertices[face[k]] - mesh.vertices[face[(k + 1) % 3]]).norm());
+    }
+  }
+  for (const TextureView& view : views) {
+    const double width = double(view.camera.width), height = double(view.camera.height);
+    Eigen::Vector4d extent(INFINITY, -INFINITY, INFINITY, -INFINITY);
+    for (int i = 0; i <= kBorderSamples; ++i) {
+      const double s = double(i) / kBorderSamples;
+      for (const Eigen::Vector2d& pixel : {Eigen::Vector2d(s * width, 0.0), Eigen::Vector2d(s * width, height),
+                                           Eigen::Vector2d(0.0, s * height), Eigen::Vector2d(width, s * height)}) {
+        const Eigen::Vector3d ray = view.camera.CamFromImg(pixel);
+        extent = Eigen::Vector4d(std::min(extent[0], ray.x()), std::max(extent[1], ray.x()),
+                                 std::min(extent[2], ray.y()), std::max(extent[3], ray.y()));
+      }
+    }
+    const double grow_x = kExtentMargin * (extent[1] - extent[0]), grow_y = kExtentMargin * (extent[3] - extent[2]);
+    view_extent_.emplace_back(extent[0] - grow_x, extent[1] + grow_x, extent[2] - grow_y, extent[3] + grow_y);
+  }
+}
+
+bool TiledViewChoice::MaySee(std::size_t view, const Eigen::AlignedBox3d& box) const {
+  const Eigen::Vector4d& extent = view_extent_[view];
+  // Each side of the frustum as a half-space through the camera's centre, n . point_in_cam <= 0 inside.
+  const std::array<Eigen::Vector3d, 5> outward = {
+      Eigen::Vector3d(0.0, 0.0, -1.0), Eigen::Vector3d(1.0, 0.0, -extent[1]), Eigen::Vector3d(-1.0, 0.0, extent[0]),
+      Eigen::Vector3d(0.0, 1.0, -extent[3]), Eigen::Vector3d(0.0, -1.0, extent[2])};
+  std::array<Eigen::Vector3d, 8> corners_in_cam;
+  for (int c = 0; c < 8; ++c) {
+    corners_in_cam[c] = views_[view].cam_from_world * box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+  }
+  for (const Eigen::Vector3d& n : outward) {
+    bool all_outside = true;
+    for (const Eigen::Vector3d& corner : corners_in_cam) all_outside = all_outside && n.dot(corner) > 0.0;
+    if (all_outside) return false;
+  }
+  return true;
+}
+
+TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& source) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::uint32_t>& faces = *tiles_.at(tile);
+  Eigen::AlignedBox3d grown = tile_boxes_[tile];
+  grown.min().array() -= longest_edge_;
+  grown.max().array() += longest_edge_;
+
+  // The views that may see the tile or the faces next to it, and the box their rays to it stay in.
+  ViewChoicePart part;
+  part.casts.stride_of_view = strides_.stride_of_view;
+  part.casts.faces_within = grown;
+  Eigen::AlignedBox3d reach = grown;
+  for (std::size_t v = 0; v < views_.size(); ++v) {
+    if (!MaySee(v, grown)) continue;
+    part.casts.views.push_back(static_cast<std::uint32_t>(v));
+    reach.extend(views_[v].cam_from_world.TargetOriginInSource());
+  }
+  std::vector<std::uint32_t> piece_faces;
+  for (std::size_t t = 0; t < tiles_.size(); ++t) {
+    if (!tile_boxes_[t].intersects(reach)) continue;
+    for (std::uint32_t f : *tiles_[t]) {
+      if (t == tile || FaceBox(mesh_, f).intersects(reach)) piece_faces.push_back(f);
+    }
+  }
+  std::sort(piece_faces.begin(), piece_faces.end());
+
+  TileMesh piece = ExtractTileMesh(mesh_, piece_faces);
+  std::vector<std::uint32_t> tile_faces;
+  part.given.resize(piece_faces.size());
+  std::vector<bool> in_tile(piece_faces.size(), false);
+  for (std::size_t i = 0, j = 0; i < piece_faces.size(); ++i) {
+    const std::uint32_t f = piece_faces[i];
+    while (j < faces.size() && faces[j] < f) ++j;
+    in_tile[i] = j < faces.size() && faces[j] == f;
+    if (in_tile[i]) tile_faces.push_back(static_cast<std::uint32_t>(i));
+    part.given[i] = in_tile[i] ? kChooseView : view_of_face_[f] == kChooseView ? kNoView : view_of_face_[f];
+  }
+  const std::vector<std::uint32_t>& source_vertex = piece.source_vertex;
+  part.settled = [&](std::uint32_t vertex, std::uint32_t view) {
+    const auto found = settled_.find(SettledKey(source_vertex[vertex], view));
+    return found == settled_.end() ? Eigen::Vector3f::Zero().eval() : found->second;
+  };
+  auto scene = std::make_unique<RaycastScene>(piece.mesh);
+  ChosenViews chosen =
+      ChooseViews(piece.mesh, FaceAdjacency(piece.mesh), views_, ViewRaycaster(*scene), source, options_, &part);
+  part.settled = nullptr;
+
+  // What the tiles after this one need: its labels, and its corrections where its faces meet others.
+  const std::vector<std::uint32_t>& labels = chosen.selection.view_of_face;
+  for (std::uint32_t i : tile_faces) view_of_face_[piece_faces[i]] = labels[i];
+  std::vector<std::uint8_t> used_by(piece.mesh.vertices.size(), 0);  // 1: a tile's face, 2: another
+  for (std::size_t i = 0; i < piece_faces.size(); ++i) {
+    for (std::uint32_t v : piece.mesh.faces[i]) used_by[v] = static_cast<std::uint8_t>(used_by[v] | (in_tile[i] ? 1 : 2));
+  }
+  std::vector<std::pair<std::uint32_t, Eigen::Vector3f>> at_vertex;
+  for (std::uint32_t v = 0; v < used_by.size(); ++v) {
+    if (used_by[v] != 3) continue;
+    at_vertex.clear();
+    chosen.corrections.AppendAt(v, &at_vertex);
+    for (const auto& [view, correction] : at_vertex) settled_[SettledKey(source_vertex[v], view)] = correction;
+  }
+
+  const SeamLevellingSummary& levelled = chosen.levelling;
+  const double points = double(levelling_.num_seam_points), more = double(levelled.num_seam_points);
+  if (points + more > 0.0) {
+    levelling_.step_before = (levelling_.step_before * points + levelled.step_before * more) / (points + more);
+    levelling_.step_after = (levelling_.step_after * points + levelled.step_after * more) / (points + more);
+  }
+  levelling_.enabled = levelled.enabled;
+  levelling_.num_seam_points += levelled.num_seam_points;
+  levelling_.num_unknowns += levelled.num_unknowns;
+  levelling_.iterations = std::max(levelling_.iterations, levelled.iterations);
+  levelling_.seconds += levelled.seconds;
+  max_piece_faces_ = std::max(max_piece_faces_, piece_faces.size());
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return TilePiece{std::move(piece), std::move(tile_faces), std::move(scene), std::move(chosen)};
+}
+
+}  // namespace lutex

@@ -1,0 +1,87 @@
+#pragma once
+
+// The views of a tiled bake chosen tile by tile, each on the tile's own piece of the mesh, so that the
+// memory and the work of choosing them are those of a tile, not of the dive (`lutex tiles`).
+//
+// A tile's piece is its faces and every face that may hide them from a view that sees them: the views
+// whose frustum reaches the tile's box grown by the mesh's longest edge (so that the faces next to the
+// tile's are in it too), and the faces that reach the box around that grown box and those views' centres
+// (a ray from a camera to the tile does not leave it). On the piece, with its own ray-casting scene and
+// adjacency (texture_baker.h ChooseViews with a ViewChoicePart):
+//   1. the candidates of its faces from those views, cast at the strides of the whole mesh over the
+//      window of each view the grown box covers (face_view_candidates.h VisibilityCasts), so that a face
+//      gets the candidates it gets in the whole;
+//   2. the labels of the tile's faces, with the labels of the tiles chosen before fixed (view_selection.h):
+//      labels agree across tile borders as they do inside a tile;
+//   3. the seam levelling of the tile's faces, with the corrections the tiles before settled held at the
+//      vertices they share (seam_levelling.h SeamLevellingPart): a border shows one correction from both
+//      sides.
+// Kept for the whole dive between tiles: each face's label (4 bytes) and the corrections at the vertices
+// of tile borders. The rest (the piece, its scene, adjacency and candidates) lives as long as the tile's
+// bake, which BakeFaces does with the piece's choice.
+//
+// Tiles are chosen in the order they are asked for, and the result depends on that order (the later of
+// two neighbours adapts to the earlier), not on the thread count.
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "lib/geometry/mesh.h"
+#include "lib/raycast/raycast_scene.h"
+#include "texturing/texture_baker.h"
+#include "texturing/texture_views.h"
+#include "texturing/tile_mesh.h"
+
+namespace lutex {
+
+struct TilePiece {
+  TileMesh piece;                         // its mesh, and each vertex's index in the dive's mesh
+  std::vector<std::uint32_t> tile_faces;  // the tile's faces among the piece's, ascending
+  std::unique_ptr<RaycastScene> scene;
+  ChosenViews chosen;                     // for every face of the piece
+};
+
+class TiledViewChoice {
+ public:
+  // `tiles`: the faces of each tile, ascending; together each face of `mesh` once. All are referred to, not
+  // copied, and must outlive the choice.
+  TiledViewChoice(const Mesh& mesh, const std::vector<TextureView>& views,
+                  std::vector<const std::vector<std::uint32_t>*> tiles, const TextureBakingOptions& options);
+
+  // Chooses the views of tile `tile` (each tile once). Throws what the image source throws.
+  TilePiece Choose(std::size_t tile, const ViewImageSource& source);
+
+  // Over the tiles chosen so far: the seam levelling (points, corrections and steps summed or averaged
+  // by points, iterations the most), and the time of each step.
+  const SeamLevellingSummary& levelling() const { return levelling_; }
+  double seconds() const { return seconds_; }
+  std::size_t max_piece_faces() const { return max_piece_faces_; }
+
+ private:
+  // Whether any of `box`'s corners can be in `view`'s image: false when all lie beyond one side of its
+  // frustum (conservative: the frustum is the image's border, sampled, grown by a little).
+  bool MaySee(std::size_t view, const Eigen::AlignedBox3d& box) const;
+
+  const Mesh& mesh_;
+  const std::vector<TextureView>& views_;
+  std::vector<const std::vector<std::uint32_t>*> tiles_;
+  TextureBakingOptions options_;
+  VisibilityCasts strides_;                     // every view's stride on the whole mesh
+  std::vector<Eigen::AlignedBox3d> tile_boxes_;  // of each tile's faces
+  double longest_edge_ = 0.0;
+  // Per view, the image's extent in normalised camera coordinates (x / z, y / z): min x, max x, min y, max y.
+  std::vector<Eigen::Vector4d> view_extent_;
+  std::vector<std::uint32_t> view_of_face_;     // kChooseView until its tile is chosen
+  // Corrections at tile borders: (dive's vertex << 32 | view) -> correction.
+  std::unordered_map<std::uint64_t, Eigen::Vector3f> settled_;
+  SeamLevellingSummary levelling_;
+  double seconds_ = 0.0;
+  std::size_t max_piece_faces_ = 0;
+};
+
+}  // namespace lutex
