@@ -38,11 +38,11 @@ cv::Mat LoadViewConfidence(const ViewImageSource& source, const std::vector<Text
 }
 
 const CameraRays& ViewRaycaster::RaysFor(const Camera& camera, int stride) const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  std::unique_ptr<CameraRays>& full = rays_by_camera_[{camera.camera_id, 1}];
+  std::lock_guard<std::mutex> lock(rays_->mutex);
+  std::unique_ptr<CameraRays>& full = rays_->by_camera[{camera.camera_id, 1}];
   if (!full) full = std::make_unique<CameraRays>(camera, 1);
   if (stride == 1) return *full;
-  std::unique_ptr<CameraRays>& strided = rays_by_camera_[{camera.camera_id, stride}];
+  std::unique_ptr<CameraRays>& strided = rays_->by_camera[{camera.camera_id, stride}];
   if (!strided) strided = std::make_unique<CameraRays>(CameraRays::Strided(*full, stride));
   return *strided;
 }

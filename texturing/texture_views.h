@@ -56,11 +56,20 @@ cv::Mat LoadViewImage(const ViewImageSource& source, const std::vector<TextureVi
 cv::Mat LoadViewConfidence(const ViewImageSource& source, const std::vector<TextureView>& views,
                            std::size_t view_index, const cv::Rect& window = cv::Rect());
 
+// The ray tables of cameras, by camera id and stride, built on first use: at 12 MP a table is 144 MB and
+// takes a fraction of a second, so raycasters of several meshes (the pieces of a tiled bake:
+// tile_views.h) share them.
+struct ViewRayTables {
+  std::mutex mutex;
+  std::map<std::pair<std::uint32_t, int>, std::unique_ptr<CameraRays>> by_camera;
+};
+
 // Ray casts views of one mesh. The ray table of each camera is built once, on first use, and shared by
 // every view with the same camera id (a dive usually has one camera).
 class ViewRaycaster {
  public:
-  explicit ViewRaycaster(const RaycastScene& scene) : scene_(scene) {}
+  explicit ViewRaycaster(const RaycastScene& scene, std::shared_ptr<ViewRayTables> rays = std::make_shared<ViewRayTables>())
+      : scene_(scene), rays_(std::move(rays)) {}
 
   // Depth and face id of every pixel of `view` into `maps`, or of the pixels of `window` when it is not
   // empty (maps.origin tells where the maps start), reusing its buffers (one set per worker: no fresh
@@ -79,9 +88,7 @@ class ViewRaycaster {
   const CameraRays& RaysFor(const Camera& camera, int stride = 1) const;
 
   const RaycastScene& scene_;
-  mutable std::mutex mutex_;
-  // By camera id and stride.
-  mutable std::map<std::pair<std::uint32_t, int>, std::unique_ptr<CameraRays>> rays_by_camera_;
+  std::shared_ptr<ViewRayTables> rays_;
 };
 
 }  // namespace lutex

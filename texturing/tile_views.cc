@@ -129,8 +129,8 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
     return found == settled_.end() ? Eigen::Vector3f::Zero().eval() : found->second;
   };
   auto scene = std::make_unique<RaycastScene>(piece.mesh);
-  ChosenViews chosen =
-      ChooseViews(piece.mesh, FaceAdjacency(piece.mesh), views_, ViewRaycaster(*scene), source, options_, &part);
+  auto raycaster = std::make_unique<ViewRaycaster>(*scene, rays_);
+  ChosenViews chosen = ChooseViews(piece.mesh, FaceAdjacency(piece.mesh), views_, *raycaster, source, options_, &part);
   part.settled = nullptr;
 
   // What the tiles after this one need: its labels, and its corrections where its faces meet others.
@@ -161,7 +161,7 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
   levelling_.seconds += levelled.seconds;
   max_piece_faces_ = std::max(max_piece_faces_, piece_faces.size());
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return TilePiece{std::move(piece), std::move(tile_faces), std::move(scene), std::move(chosen)};
+  return TilePiece{std::move(piece), std::move(tile_faces), std::move(scene), std::move(raycaster), std::move(chosen)};
 }
 
 }  // namespace lutex

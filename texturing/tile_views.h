@@ -43,6 +43,7 @@ struct TilePiece {
   TileMesh piece;                         // its mesh, and each vertex's index in the dive's mesh
   std::vector<std::uint32_t> tile_faces;  // the tile's faces among the piece's, ascending
   std::unique_ptr<RaycastScene> scene;
+  std::unique_ptr<ViewRaycaster> raycaster;  // of `scene`, with the choice's ray tables
   ChosenViews chosen;                     // for every face of the piece
 };
 
@@ -72,6 +73,7 @@ class TiledViewChoice {
   std::vector<const std::vector<std::uint32_t>*> tiles_;
   TextureBakingOptions options_;
   VisibilityCasts strides_;                     // every view's stride on the whole mesh
+  std::shared_ptr<ViewRayTables> rays_ = std::make_shared<ViewRayTables>();  // shared by the pieces
   std::vector<Eigen::AlignedBox3d> tile_boxes_;  // of each tile's faces
   double longest_edge_ = 0.0;
   // Per view, the image's extent in normalised camera coordinates (x / z, y / z): min x, max x, min y, max y.

@@ -19,13 +19,14 @@ int RunTilesCommand(int argc, char** argv) {
       "Writes the textured mesh as OGC 3D Tiles 1.1 for web map viewers (CesiumJS and the portals built on\n"
       "it): DIR/tileset.json (default W/lutex/tiles/) and one GLB per tile.\n"
       "The mesh is cut into a quadtree of tiles over its horizontal footprint, each leaf at most --tile-faces\n"
-      "faces. One view per face is chosen for the whole mesh (as lutex texture does), so tile borders are\n"
-      "not seams; each leaf is baked with those views at full resolution, then each parent from its\n"
+      "faces. Each leaf's views are chosen on the leaf and the surface around it that may hide it, with the\n"
+      "views and seam corrections of the leaves done before fixed at its border, so tile borders are not\n"
+      "seams; each leaf is baked with those views at full resolution, then each parent from its\n"
       "children's meshes simplified to the same face budget (borders locked, so tiles meet without cracks)\n"
       "at twice their texel size, with a geometric error in metres that tells the viewer when to refine.\n"
       "The georeference (options or W/georef.json) gives the root transform that puts the tiles on the\n"
-      "globe; without one the tiles stay in the model's frame and a warning says so. Memory: one tile at a\n"
-      "time, plus the view chosen for every face.");
+      "globe; without one the tiles stay in the model's frame and a warning says so. Memory: one leaf and\n"
+      "the surface around it at a time, plus the mesh and the view chosen for every face.");
   AddDiveOptions(parser, &options.workspace, &options.mesh);
   parser.AddPath("images", &options.views.images, "Images to texture from (default W/lutex/restored, else W/images).");
   AddImageEncodingOption(parser, "image-encoding", &options.views.image_encoding, "How those images are encoded:");

@@ -42,7 +42,7 @@ void TilesOptions::Check() const {
 namespace {
 
 // Leaves' worth of faces in a leaf's piece, for the memory estimate (see TilesWorkspace).
-constexpr std::size_t kPieceLeaves = 4;
+constexpr std::size_t kPieceLeaves = 8;
 
 InputsAndOutputs PathsOf(const TilesOptions& options, const Workspace& workspace) {
   InputsAndOutputs paths = ViewStageInputs(workspace, options.mesh, options.views, "the images to texture from");
@@ -93,7 +93,7 @@ class TileBaker {
       TextureBakingSummary baking;
       const TilePiece piece = choice_.Choose(leaf_of_node_.at(node_index), source_);
       std::vector<std::uint32_t> vertex_in_piece;
-      textured = BakeFaces(piece.piece.mesh, views_, ViewRaycaster(*piece.scene), source_, piece.chosen,
+      textured = BakeFaces(piece.piece.mesh, views_, *piece.raycaster, source_, piece.chosen,
                            piece.tile_faces, options_.baking, vertex_in_piece, baking);
       for (std::uint32_t v : vertex_in_piece) baked.geometry.source_vertex.push_back(piece.piece.source_vertex[v]);
       baked.geometry.mesh = textured.mesh;
@@ -202,7 +202,8 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
   // A leaf's views are chosen on its piece, the leaf and the surface around it within reach of the views
-  // that see it (tile_views.h): on the tiles benchmark's survey at most kPieceLeaves leaves' worth.
+  // that see it (tile_views.h), taken as kPieceLeaves leaves' worth: the pieces held up to 1.8 leaves'
+  // worth of faces on the tiles benchmark's survey and 5.8 on the 12 MP one (README, 'Speed and memory').
   const std::size_t piece_faces = std::min(dive.mesh().faces.size(), kPieceLeaves * options.tree.max_faces);
   MemoryEstimate baking_memory = TextureBakingMemory(options.baking, piece_faces);
   baking_memory.Add("the label of every face", static_cast<double>(dive.mesh().faces.size()), sizeof(std::uint32_t));
