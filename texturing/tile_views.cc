@@ -131,7 +131,6 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
   auto scene = std::make_unique<RaycastScene>(piece.mesh);
   auto raycaster = std::make_unique<ViewRaycaster>(*scene, rays_);
   ChosenViews chosen = ChooseViews(piece.mesh, FaceAdjacency(piece.mesh), views_, *raycaster, source, options_, &part);
-  part.settled = nullptr;
 
   // What the tiles after this one need: its labels, and its corrections where its faces meet others.
   const std::vector<std::uint32_t>& labels = chosen.selection.view_of_face;

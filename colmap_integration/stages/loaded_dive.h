@@ -20,7 +20,8 @@ namespace lutex {
 
 class LoadedDive {
  public:
-  // Finds the workspace at `workspace_root` and reads its model and `mesh_path`. Throws std::runtime_error naming the file that is missing or wrong.
+  // Finds the workspace at `workspace_root` and reads its model and `mesh_path`. Throws
+  // std::runtime_error naming the file that is missing or wrong.
   LoadedDive(const std::filesystem::path& workspace_root, const std::filesystem::path& mesh_path);
   LoadedDive(const LoadedDive&) = delete;
   LoadedDive& operator=(const LoadedDive&) = delete;
