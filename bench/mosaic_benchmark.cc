@@ -2,9 +2,17 @@
 // altitude (640 x 480, 8-bit sRGB PNG, 1 m between images, 3 lines 2 m apart) over a seafloor 6 m wide and
 // 10, 20 or 40 m long (2 cm mesh cells: 0.3, 0.6, 1.2 M faces), mapped at 5 mm. For each: `lutex mosaic`
 // time per output megapixel and peak memory (resident set, in a child process that does nothing else),
-// against plain decoding of the same images in the same run. Not a test.
+// against plain decoding of the same images in the same run, and the most faces a tile's piece held
+// (texturing/tile_views.h). Not a test.
 //
-//   mosaic_benchmark [--num-threads 0] [--tile-size 1024]
+//   mosaic_benchmark [--num-threads 0] [--tile-size 1024] [--image-cache MiB] [--gdal-cache MiB] [--keep 0]
+//
+// --keep 1 leaves the simulated dives in /tmp/lutex_mosaic_benchmark/dive_N/W, to run `lutex mosaic` on
+// them under a profiler.
+//
+// --image-cache sets `lutex mosaic`'s decoded-picture cache and --gdal-cache GDAL's block cache while
+// the GeoTIFFs are written (defaults: the command's). Each is a budget: these small images and mosaics
+// fit in the defaults, which then fill with the area up to them.
 
 #include <chrono>
 #include <cstdio>
@@ -32,6 +40,7 @@ struct Measurement {
   double tiles = 0.0;
   double image_reads = 0.0;
   double images = 0.0;
+  double piece_faces = 0.0;
 };
 
 void SimulateMosaicDive(const fs::path& root, double length, int num_threads) {
@@ -46,7 +55,8 @@ void SimulateMosaicDive(const fs::path& root, double length, int num_threads) {
       num_threads);
 }
 
-Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size) {
+Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size, std::size_t cache_bytes,
+                   std::size_t gdal_cache_bytes) {
   using namespace lutex;
   Measurement measurement;
   measurement.decode_seconds = bench::DecodeSeconds(workspace, num_threads);
@@ -58,6 +68,8 @@ Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size) {
   options.output = workspace / "ortho.tif";
   options.dem = workspace / "dem.tif";
   options.ortho.tile_size = tile_size;
+  options.picture_cache_bytes = cache_bytes;
+  options.gdal_cache_bytes = gdal_cache_bytes;
   options.ortho.baking.num_threads = num_threads;
   const auto start = std::chrono::steady_clock::now();
   const MosaicSummary summary = MosaicWorkspace(options);
@@ -66,6 +78,7 @@ Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size) {
   measurement.tiles = double(summary.mosaic.num_tiles);
   measurement.image_reads = double(summary.mosaic.tile_view_reads);
   measurement.images = double(summary.mosaic.num_views);
+  measurement.piece_faces = double(summary.mosaic.max_piece_faces);
   return measurement;
 }
 
@@ -75,25 +88,31 @@ int main(int argc, char** argv) {
   using namespace lutex;
   const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
   const int tile_size = bench::IntOption(argc, argv, "--tile-size", 1024);
+  const int cache_mib = bench::IntOption(argc, argv, "--image-cache", int(kDefaultPictureCacheBytes >> 20));
+  const bool keep = bench::IntOption(argc, argv, "--keep", 0) != 0;
+  const int gdal_cache_mib = bench::IntOption(argc, argv, "--gdal-cache", int(MosaicOptions().gdal_cache_bytes >> 20));
   SetLogLevel(LogLevel::kWarning);
   const fs::path root = fs::temp_directory_path() / "lutex_mosaic_benchmark";
   fs::remove_all(root);
-  std::printf("mosaic benchmark: %d threads, tiles of %d pixels, 5 mm GSD\n", num_threads, tile_size);
-  std::printf("%6s %7s %8s %6s %7s %11s %11s %13s %8s %11s\n", "area", "images", "Mpixels", "tiles", "reads",
-              "decode [s]", "mosaic [s]", "s/Mpixel", "ratio", "peak [MiB]");
+  std::printf("mosaic benchmark: %d threads, tiles of %d pixels, image cache %d MiB, GDAL cache %d MiB, 5 mm GSD\n",
+              num_threads, tile_size, cache_mib, gdal_cache_mib);
+  std::printf("%6s %7s %8s %6s %7s %11s %11s %13s %8s %11s %13s\n", "area", "images", "Mpixels", "tiles", "reads",
+              "decode [s]", "mosaic [s]", "s/Mpixel", "ratio", "peak [MiB]", "piece faces");
   for (const int factor : {1, 2, 4}) {
     const fs::path dive = root / ("dive_" + std::to_string(factor));
     bench::InChild<Measurement>([&] {
       SimulateMosaicDive(dive, 10.0 * factor, num_threads);
       return Measurement{};
     });
-    const Measurement m = bench::InChild<Measurement>([&] { return Mosaic(dive / "W", num_threads, tile_size); });
-    std::printf("%5dx %7.0f %8.1f %6.0f %7.0f %11.2f %11.2f %13.3f %8.1f %11.0f\n", factor, m.images, m.megapixels,
-                m.tiles, m.image_reads, m.decode_seconds, m.seconds, m.seconds / m.megapixels,
-                m.seconds / m.decode_seconds, m.peak_mib);
+    const Measurement m = bench::InChild<Measurement>(
+        [&] { return Mosaic(dive / "W", num_threads, tile_size, std::size_t(cache_mib) << 20,
+                            std::size_t(gdal_cache_mib) << 20); });
+    std::printf("%5dx %7.0f %8.1f %6.0f %7.0f %11.2f %11.2f %13.3f %8.1f %11.0f %13.0f\n", factor, m.images,
+                m.megapixels, m.tiles, m.image_reads, m.decode_seconds, m.seconds, m.seconds / m.megapixels,
+                m.seconds / m.decode_seconds, m.peak_mib, m.piece_faces);
     std::fflush(stdout);
-    fs::remove_all(dive);
+    if (!keep) fs::remove_all(dive);
   }
-  fs::remove_all(root);
+  if (!keep) fs::remove_all(root);
   return 0;
 }

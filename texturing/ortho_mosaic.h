@@ -11,13 +11,18 @@
 // layout for the same fusion. Its height is the point's height in the map frame. Cells with no surface
 // below them, or whose surface no view sees, are nodata (NaN).
 //
-// Visibility, view selection and seam levelling are solved once for the whole mesh (texture_baker.h
-// ChooseViews, as for the texture: a cell's colour gets its face's seam correction); then each tile is
-// laid out, fused (reading only the views that see its faces) and handed to the caller, then freed:
-// memory is bounded by the tile size and the threads, not by the mosaic's size. Results do not depend on
-// the thread count.
+// The mesh is cut into the tiles' pieces (tile_views.h TiledViewChoice): each face goes to the tile its
+// centroid lies over, and a tile's piece holds its faces and every face that may hide them or lie over
+// its cells, with its own ray-casting scene. Tile by tile, row by row: the cells are cast down on the
+// piece; the views of the tile's faces and of the faces its cells show are chosen and their seams
+// levelled, with the labels and corrections of the tiles before held (so a face shows one label and one
+// correction, whichever tile's cells show it); the cells are fused, reading only the views that may see
+// the tile, handed to the caller and freed with the piece. Memory is bounded by the tile size, the pieces
+// and the threads, plus a label per face; not by the mosaic's size. Results do not depend on the thread
+// count.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -47,15 +52,51 @@ constexpr double kMaxOrthoCells = 6.4e9;
 // ("--gsd 1e-05 would make a mosaic of 1000000 x 800000 pixels (8e+11); ..."), and what the frame throws.
 OrthoGrid OrthoGridOfMesh(const Mesh& mesh, const MapFrame& frame, double gsd);
 
-// Casts 64 rows of the grid down: throws std::invalid_argument when none hits the mesh ("the mesh has no
-// surface seen from above"), before any image is read or any file is created.
-void CheckSurfaceFromAbove(const RaycastScene& scene, const MapFrame& frame, const OrthoGrid& grid, int num_threads);
+// Throws std::invalid_argument when no face of the mesh can be seen from above: every face is vertical
+// in the map frame, or degenerate ("the mesh has no surface seen from above"). Before any image is read
+// or any file is created.
+void CheckSurfaceFromAbove(const Mesh& mesh, const MapFrame& frame);
 
 struct OrthoMosaicOptions {
   TextureBakingOptions baking;  // visibility, selection and fusion are the texture's
   int tile_size = 1024;          // cells per side of a tile
   void Check() const;
 };
+
+// The mosaic's tiles (tile_size cells a side, the last of a row or column cut at the grid's edge), in
+// square blocks of block_side tiles a side whose views are chosen together, and the faces of the mesh
+// each block holds: those whose centroid lies over its cells.
+struct OrthoTiling {
+  int tile_size = 0;
+  int tiles_x = 0;
+  int tiles_y = 0;
+  int block_side = 1;
+  int blocks_x = 0;
+  int blocks_y = 0;
+  std::vector<std::vector<std::uint32_t>> faces;  // per block, row by row, ascending
+
+  std::size_t num_tiles() const { return static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y); }
+  std::size_t num_blocks() const { return faces.size(); }
+  // The cells of a block, and of its tiles (row by row).
+  cv::Rect BlockCells(std::size_t block, const GeoRasterGrid& raster) const;
+  std::vector<cv::Rect> TilesOfBlock(std::size_t block, const GeoRasterGrid& raster) const;
+  std::size_t MostFaces() const;  // of a block
+};
+
+// Each view's ground sampling distance at its image centre: the range along its optical axis to the mesh
+// over its focal length in pixels (metres per pixel; +infinity where the axis misses the mesh). The ranges
+// are found in one pass over the faces (lib/raycast/few_ray_hits.h).
+std::vector<double> GsdsAtImageCentres(const Mesh& mesh, const std::vector<TextureView>& views);
+
+// Tiles a side of a block: about as many as the median view's footprint on the mesh spans (its image
+// width times the range at its centre over its focal length), at least 1. A tile's views are chosen on
+// the surface within reach of the views that see it: a block as wide as a footprint shares that work
+// among its tiles, at about four blocks' worth of faces (tile_views.h).
+int OrthoBlockSide(const Mesh& mesh, const std::vector<TextureView>& views, const OrthoGrid& grid, int tile_size);
+
+// One pass over the mesh's faces.
+OrthoTiling TileOrthoGrid(const Mesh& mesh, const MapFrame& frame, const OrthoGrid& grid, int tile_size,
+                          int block_side);
 
 // One finished tile: cells [col, col + colour.cols) x [row, row + colour.rows) of the grid.
 struct OrthoTile {
@@ -70,19 +111,24 @@ struct OrthoMosaicSummary {
   std::size_t surface_cells = 0;  // with a surface below them
   std::size_t seen_cells = 0;     // with a colour
   std::size_t num_tiles = 0;
+  std::size_t num_blocks = 0;  // of tiles whose views are chosen together (OrthoTiling)
   std::size_t num_views = 0;
   std::size_t tile_view_reads = 0;  // images read over all tiles (a view is read by each tile it reaches)
   double mean_samples_per_cell = 0.0;
   SeamLevellingSummary levelling;
   double seconds_selection = 0.0;  // visibility, view selection and seam levelling
-  double seconds_tiles = 0.0;
+  double seconds_tiles = 0.0;      // the rest
+  std::size_t max_piece_faces = 0;  // the most faces a tile's piece held
 };
 
-// Hands every tile, row by row, to `write_tile` (from the calling thread). Throws what
-// CheckSurfaceFromAbove, the image source and `write_tile` throw.
-OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const RaycastScene& scene, const std::vector<TextureView>& views,
+// Hands every tile, block by block and in a block row by row, to `write_tile` (from the calling thread).
+// `tiling`: TileOrthoGrid's for options.tile_size when the caller has made it (null: made here, with
+// OrthoBlockSide's blocks). Throws what CheckSurfaceFromAbove, the
+// image source and `write_tile` throw.
+OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureView>& views,
                                    const ViewImageSource& source, const MapFrame& frame, const OrthoGrid& grid,
                                    const OrthoMosaicOptions& options,
-                                   const std::function<void(const OrthoTile&)>& write_tile);
+                                   const std::function<void(const OrthoTile&)>& write_tile,
+                                   const OrthoTiling* tiling = nullptr);
 
 }  // namespace lutex

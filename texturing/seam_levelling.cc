@@ -92,7 +92,11 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
   if (part && part->levelled_here.size() != mesh.faces.size()) {
     throw std::invalid_argument("seam levelling: the part must say of every face whether it is levelled");
   }
+  if (part && !part->shown.empty() && part->shown.size() != mesh.faces.size()) {
+    throw std::invalid_argument("seam levelling: the part's shown faces must be one flag per face");
+  }
   const auto here = [&](std::uint32_t f) { return !part || part->levelled_here[f]; };
+  const auto shown = [&](std::uint32_t f) { return part && !part->shown.empty() && part->shown[f]; };
 
   // The seam points with a side here, face pair by face pair in ascending order.
   std::vector<SeamPoint> points;
@@ -190,9 +194,10 @@ SeamCorrections LevelSeams(const Mesh& mesh, const FaceAdjacency& adjacency, con
     for (std::uint32_t v : mesh.faces[f]) used_by[v] = static_cast<std::uint8_t>(used_by[v] | (here(f) ? 1 : 2));
   }
   // Face f's correction at its vertex v is held: a face here's where the corrections reach; a face
-  // before's where it meets a face here (its value is then the settled one).
+  // before's where it meets a face here, or everywhere when it is shown (its value is then the settled one).
   const auto held = [&](std::uint32_t f, std::uint32_t v) {
-    return view_of_face[f] != kNoView && (used_by[v] & 1) && (!here(f) || reached(v));
+    if (view_of_face[f] == kNoView) return false;
+    return here(f) ? reached(v) : (used_by[v] & 1) || shown(f);
   };
 
   // The corrections held: (vertex, view) for the views of the faces around each vertex.

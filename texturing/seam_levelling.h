@@ -78,9 +78,12 @@ struct SeamLevellingSummary {
 // the faces levelled here, and what the pieces levelled before settled. The seam points with a side here
 // are levelled; a correction (vertex, view) that a face levelled before also has is held at the value it
 // settled there (0 when it had none), so that the piece's border shows the same corrections from both
-// sides. The faces of pieces not levelled yet have no label (kNoView) here.
+// sides. The faces of pieces not levelled yet have no label (kNoView) here. A face levelled before that the
+// caller shows with this piece's corrections (a mosaic's cell on it) holds the settled ones at all its
+// corners, not only where it meets a face here.
 struct SeamLevellingPart {
   std::vector<bool> levelled_here;  // one per face of the mesh
+  std::vector<bool> shown;          // one per face of the mesh, or empty: none
   std::function<Eigen::Vector3f(std::uint32_t vertex, std::uint32_t view)> settled;
 };
 

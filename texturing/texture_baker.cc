@@ -95,6 +95,7 @@ ChosenViews ChooseViews(const Mesh& mesh, const FaceAdjacency& adjacency, const 
   if (part) {
     levelling_part.levelled_here.resize(mesh.faces.size());
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) levelling_part.levelled_here[f] = part->given[f] == kChooseView;
+    levelling_part.shown = part->shown;
     levelling_part.settled = part->settled;
   }
   chosen.corrections = LevelSeams(mesh, adjacency, views, raycaster, source, chosen.candidates,

@@ -95,10 +95,12 @@ struct ChosenViews {
 // A piece of a larger mesh whose views are chosen piece by piece (tile_views.h): the views to cast and
 // their strides (face_view_candidates.h VisibilityCasts), each face's given label (view_selection.h
 // SelectViews: kChooseView for the faces chosen here, whose seams are levelled here) and the seam
-// corrections the pieces before settled (seam_levelling.h SeamLevellingPart).
+// corrections the pieces before settled, and the faces chosen before that the caller shows with this
+// piece's corrections (seam_levelling.h SeamLevellingPart).
 struct ViewChoicePart {
   VisibilityCasts casts;
   std::vector<std::uint32_t> given;
+  std::vector<bool> shown;  // one per face, or empty: none
   std::function<Eigen::Vector3f(std::uint32_t vertex, std::uint32_t view)> settled;
 };
 // `part`: null for a whole mesh.

@@ -30,14 +30,16 @@ std::uint64_t SettledKey(std::uint32_t vertex, std::uint32_t view) { return std:
 
 TiledViewChoice::TiledViewChoice(const Mesh& mesh, const std::vector<TextureView>& views,
                                  std::vector<const std::vector<std::uint32_t>*> tiles,
-                                 const TextureBakingOptions& options)
+                                 const TextureBakingOptions& options, const std::vector<Eigen::AlignedBox3d>& spans)
     : mesh_(mesh), views_(views), tiles_(std::move(tiles)), options_(options),
       strides_(CastEveryView(mesh, views, options.visibility.rays_per_face)),
       view_of_face_(mesh.faces.size(), kChooseView) {
   options_.Check();
+  if (!spans.empty() && spans.size() != tiles_.size()) throw std::invalid_argument("tiled views: one span per tile");
   std::size_t num_faces = 0;
   for (const std::vector<std::uint32_t>* faces : tiles_) {
     Eigen::AlignedBox3d box;
+    if (!spans.empty()) box = spans[tile_boxes_.size()];
     for (std::uint32_t f : *faces) {
       if (f >= mesh.faces.size()) throw std::invalid_argument("tiled views: a tile's face is not in the mesh");
       box.extend(FaceBox(mesh, f));
@@ -86,7 +88,7 @@ bool TiledViewChoice::MaySee(std::size_t view, const Eigen::AlignedBox3d& box) c
   return true;
 }
 
-TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& source) {
+TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& source, const TileUse* use) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::uint32_t>& faces = *tiles_.at(tile);
   Eigen::AlignedBox3d grown = tile_boxes_[tile];
@@ -111,18 +113,29 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
     }
   }
   std::sort(piece_faces.begin(), piece_faces.end());
+  if (piece_faces.empty()) {  // nothing within reach: no scene
+    return TilePiece{{}, {}, nullptr, nullptr, ChosenViews{FaceViewCandidates(0, 1), {}, {}, {}, 0.0, 0.0}};
+  }
 
   TileMesh piece = ExtractTileMesh(mesh_, piece_faces);
+  std::vector<bool> shown(piece_faces.size(), false);
+  if (use) {
+    for (std::uint32_t i : use->shown(piece)) shown.at(i) = true;
+  }
+  // Chosen here: the tile's faces and the shown ones that no tile chose before.
   std::vector<std::uint32_t> tile_faces;
   part.given.resize(piece_faces.size());
-  std::vector<bool> in_tile(piece_faces.size(), false);
+  std::vector<bool> here(piece_faces.size(), false);
   for (std::size_t i = 0, j = 0; i < piece_faces.size(); ++i) {
     const std::uint32_t f = piece_faces[i];
     while (j < faces.size() && faces[j] < f) ++j;
-    in_tile[i] = j < faces.size() && faces[j] == f;
-    if (in_tile[i]) tile_faces.push_back(static_cast<std::uint32_t>(i));
-    part.given[i] = in_tile[i] ? kChooseView : view_of_face_[f] == kChooseView ? kNoView : view_of_face_[f];
+    const bool chosen_before = view_of_face_[f] != kChooseView;
+    here[i] = !chosen_before && (shown[i] || (j < faces.size() && faces[j] == f));
+    if (here[i]) tile_faces.push_back(static_cast<std::uint32_t>(i));
+    part.given[i] = here[i] ? kChooseView : chosen_before ? view_of_face_[f] : kNoView;
+    shown[i] = shown[i] && !here[i];
   }
+  if (use) part.shown = std::move(shown);
   const std::vector<std::uint32_t>& source_vertex = piece.source_vertex;
   part.settled = [&](std::uint32_t vertex, std::uint32_t view) {
     const auto found = settled_.find(SettledKey(source_vertex[vertex], view));
@@ -132,12 +145,19 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
   auto raycaster = std::make_unique<ViewRaycaster>(*scene, rays_);
   ChosenViews chosen = ChooseViews(piece.mesh, FaceAdjacency(piece.mesh), views_, *raycaster, source, options_, &part);
 
-  // What the tiles after this one need: its labels, and its corrections where its faces meet others.
+  // What the tiles after this one need: its labels, and its corrections where its faces meet others and
+  // at every corner of the faces a later tile may show.
   const std::vector<std::uint32_t>& labels = chosen.selection.view_of_face;
   for (std::uint32_t i : tile_faces) view_of_face_[piece_faces[i]] = labels[i];
-  std::vector<std::uint8_t> used_by(piece.mesh.vertices.size(), 0);  // 1: a tile's face, 2: another
+  std::vector<std::uint8_t> used_by(piece.mesh.vertices.size(), 0);  // 1: a face here, 2: another, 3: both
   for (std::size_t i = 0; i < piece_faces.size(); ++i) {
-    for (std::uint32_t v : piece.mesh.faces[i]) used_by[v] = static_cast<std::uint8_t>(used_by[v] | (in_tile[i] ? 1 : 2));
+    for (std::uint32_t v : piece.mesh.faces[i]) used_by[v] = static_cast<std::uint8_t>(used_by[v] | (here[i] ? 1 : 2));
+  }
+  if (use && use->shown_later) {
+    for (std::uint32_t i : tile_faces) {
+      if (!use->shown_later(i)) continue;
+      for (std::uint32_t v : piece.mesh.faces[i]) used_by[v] = 3;
+    }
   }
   std::vector<std::pair<std::uint32_t, Eigen::Vector3f>> at_vertex;
   for (std::uint32_t v = 0; v < used_by.size(); ++v) {

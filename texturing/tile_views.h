@@ -22,8 +22,15 @@
 //
 // Tiles are chosen in the order they are asked for, and the result depends on that order (the later of
 // two neighbours adapts to the earlier), not on the thread count.
+//
+// A caller may show, with a tile's choice, faces beyond the tile's (a mosaic's cells show the topmost face
+// below them, whichever tile it is in: TileUse). Those not chosen yet are chosen with the tile's; those
+// chosen before keep their labels and hold the corrections settled for them at all their corners; and a
+// face chosen here that a later tile may show too has its corrections at all its corners settled for it.
+// So every face shows one label and one set of corrections, whichever tile shows it.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -41,21 +48,33 @@ namespace lutex {
 
 struct TilePiece {
   TileMesh piece;                         // its mesh, and each vertex's index in the dive's mesh
-  std::vector<std::uint32_t> tile_faces;  // the tile's faces among the piece's, ascending
+  std::vector<std::uint32_t> tile_faces;  // the piece's faces chosen here, ascending
   std::unique_ptr<RaycastScene> scene;
   std::unique_ptr<ViewRaycaster> raycaster;  // of `scene`, with the choice's ray tables
   ChosenViews chosen;                     // for every face of the piece
 };
 
+// What a caller shows with a tile's choice beyond the tile's own faces (piece faces: indices in the piece).
+struct TileUse {
+  // Given the piece, before the views are chosen: the piece's faces the caller may show, ascending.
+  std::function<std::vector<std::uint32_t>(const TileMesh& piece)> shown;
+  // Whether a tile chosen later may show this piece face, chosen here, too.
+  std::function<bool(std::uint32_t piece_face)> shown_later;
+};
+
 class TiledViewChoice {
  public:
-  // `tiles`: the faces of each tile, ascending; together each face of `mesh` once. All are referred to, not
+  // `tiles`: the faces of each tile, ascending; together each face of `mesh` once. `spans`: one box per
+  // tile that the faces it shows lie in besides its own (empty: none). The tiles are referred to, not
   // copied, and must outlive the choice.
   TiledViewChoice(const Mesh& mesh, const std::vector<TextureView>& views,
-                  std::vector<const std::vector<std::uint32_t>*> tiles, const TextureBakingOptions& options);
+                  std::vector<const std::vector<std::uint32_t>*> tiles, const TextureBakingOptions& options,
+                  const std::vector<Eigen::AlignedBox3d>& spans = {});
 
-  // Chooses the views of tile `tile` (each tile once). Throws what the image source throws.
-  TilePiece Choose(std::size_t tile, const ViewImageSource& source);
+  // Chooses the views of tile `tile` (each tile once), and of the faces `use` shows that no tile chose
+  // before. With no face within the tile's reach, the piece is empty and has no scene. Throws what the
+  // image source and `use` throw.
+  TilePiece Choose(std::size_t tile, const ViewImageSource& source, const TileUse* use = nullptr);
 
   // Over the tiles chosen so far: the seam levelling (points, corrections and steps summed or averaged
   // by points, iterations the most), and the time of each step.
@@ -74,7 +93,7 @@ class TiledViewChoice {
   TextureBakingOptions options_;
   VisibilityCasts strides_;                     // every view's stride on the whole mesh
   std::shared_ptr<ViewRayTables> rays_ = std::make_shared<ViewRayTables>();  // shared by the pieces
-  std::vector<Eigen::AlignedBox3d> tile_boxes_;  // of each tile's faces
+  std::vector<Eigen::AlignedBox3d> tile_boxes_;  // of each tile's faces and span
   double longest_edge_ = 0.0;
   // Per view, the image's extent in normalised camera coordinates (x / z, y / z): min x, max x, min y, max y.
   std::vector<Eigen::Vector4d> view_extent_;

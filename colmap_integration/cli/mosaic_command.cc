@@ -26,7 +26,9 @@ void AddMosaicStageOptions(OptionParser& parser, MosaicOptions* options) {
                    "      images of the range at the image centre / the focal length in pixels).");
   AddGeoreferenceOptions(parser, &options->georeference);
   parser.AddIntInRange("tile-size", &options->ortho.tile_size, 16, 8192,
-                       "Mosaic pixels per side of a processing tile (memory ~200 bytes per pixel of a tile).");
+                       "Mosaic pixels per side of a processing tile (memory ~200 bytes per pixel of a tile).\n"
+                       "      Tiles are grouped in blocks about an image's footprint wide; a block's views are\n"
+                       "      chosen on its own piece of the mesh, so memory does not grow with the area.");
 }
 
 int RunMosaicCommand(int argc, char** argv) {

@@ -41,14 +41,9 @@ void MosaicOptions::Check() const {
   ortho.Check();
 }
 
-double GsdOfViews(const RaycastScene& scene, const std::vector<TextureView>& views) {
-  std::vector<double> gsds;
-  for (const TextureView& view : views) {
-    const Eigen::Vector3d centre = view.cam_from_world.TargetOriginInSource();
-    const Eigen::Vector3d axis = view.cam_from_world.rotation.inverse() * Eigen::Vector3d::UnitZ();
-    const RayHit hit = scene.Intersect(centre, axis);
-    if (hit.hit) gsds.push_back(hit.distance / (0.5 * (view.camera.FocalLengthX() + view.camera.FocalLengthY())));
-  }
+double GsdOfViews(const Mesh& mesh, const std::vector<TextureView>& views) {
+  std::vector<double> gsds = GsdsAtImageCentres(mesh, views);
+  gsds.erase(std::remove_if(gsds.begin(), gsds.end(), [](double gsd) { return !std::isfinite(gsd); }), gsds.end());
   if (gsds.empty()) throw OptionError("no image centre sees the mesh: give the mosaic's {gsd}");
   return MedianInPlace(gsds);
 }
@@ -65,6 +60,9 @@ std::string WhyNotAMapWithoutGeoreference(const SparseModel& model) {
 }
 
 namespace {
+
+// Blocks' worth of faces in a block's piece, for the memory estimate (see MosaicWorkspace).
+constexpr std::size_t kPieceBlocks = 8;
 
 InputsAndOutputs PathsOf(const MosaicOptions& options, const Workspace& workspace) {
   InputsAndOutputs paths = ViewStageInputs(workspace, options.mesh, options.views, "the images to map");
@@ -103,11 +101,6 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
-  MemoryEstimate baking_memory = TextureBakingMemory(options.ortho.baking, dive.mesh().faces.size());
-  baking_memory.Add("the decoded-picture cache", 1.0,
-                    PictureCacheBytes(dive.model(), options.views.image_encoding, options.picture_cache_bytes));
-  CheckStageMemory("mosaic", dive, options.ortho.baking.num_threads, kImageStageBytesPerPixel,
-                   options.memory_limit_bytes, baking_memory);
   const auto start = std::chrono::steady_clock::now();
   const Workspace& workspace = dive.workspace();
   MosaicSummary summary;
@@ -128,14 +121,28 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   }
   double gsd = options.gsd;
   summary.gsd_from_images = gsd == 0.0;
-  if (summary.gsd_from_images) gsd = GsdOfViews(dive.scene(), found.views);
+  if (summary.gsd_from_images) gsd = GsdOfViews(dive.mesh(), found.views);
   summary.grid = OrthoGridOfMesh(dive.mesh(), frame, gsd);
+  const int tile_size = options.ortho.tile_size;
+  const OrthoTiling tiling = TileOrthoGrid(dive.mesh(), frame, summary.grid, tile_size,
+                                           OrthoBlockSide(dive.mesh(), found.views, summary.grid, tile_size));
+  // A block's views are chosen on its piece, the block and the surface around it within reach of the
+  // views that see it (ortho_mosaic.h), taken as kPieceBlocks blocks' worth of the fullest block.
+  const std::size_t piece_faces = std::min(dive.mesh().faces.size(), kPieceBlocks * tiling.MostFaces());
+  MemoryEstimate baking_memory = TextureBakingMemory(options.ortho.baking, piece_faces);
+  baking_memory.Add("the tile and label of every face", static_cast<double>(dive.mesh().faces.size()),
+                    2 * sizeof(std::uint32_t));
+  baking_memory.Add("the decoded-picture cache", 1.0,
+                    PictureCacheBytes(dive.model(), options.views.image_encoding, options.picture_cache_bytes));
+  baking_memory.Add("GDAL's block cache", 1.0, static_cast<double>(options.gdal_cache_bytes));
+  CheckStageMemory("mosaic", dive, options.ortho.baking.num_threads, kImageStageBytesPerPixel,
+                   options.memory_limit_bytes, baking_memory, piece_faces);
   summary.ortho = options.output.empty() ? workspace.OrthomosaicPath() : options.output;
   if (!options.no_dem) summary.dem = options.dem.empty() ? workspace.DemPath() : options.dem;
   LogInfo() << "mosaic: " << summary.grid.raster.width << " x " << summary.grid.raster.height << " pixels at " << gsd
             << " m";
 
-  CheckSurfaceFromAbove(dive.scene(), frame, summary.grid, options.ortho.baking.num_threads);
+  CheckSurfaceFromAbove(dive.mesh(), frame);
   CogWriter ortho(summary.ortho, summary.grid.raster,
                   options.encoding == ImageEncoding::kSrgb8 ? GeoRasterKind::kRgba8 : GeoRasterKind::kRgba16,
                   options.gdal_cache_bytes);
@@ -144,11 +151,12 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
     dem = std::make_unique<CogWriter>(summary.dem, summary.grid.raster, GeoRasterKind::kFloat32, options.gdal_cache_bytes);
   }
   const ViewImageSource source = found.Source();
-  summary.mosaic = MakeOrthoMosaic(dive.mesh(), dive.scene(), found.views, source, frame, summary.grid, options.ortho,
+  summary.mosaic = MakeOrthoMosaic(dive.mesh(), found.views, source, frame, summary.grid, options.ortho,
                                    [&](const OrthoTile& tile) {
                                      ortho.WriteTile(tile.col, tile.row, RgbaOf(tile.colour, options.encoding));
                                      if (dem) dem->WriteTile(tile.col, tile.row, tile.height);
-                                   });
+                                   },
+                                   &tiling);
   summary.files_decoded = found.pictures->decodes();
   if (summary.mosaic.seen_cells == 0) {
     throw std::runtime_error("mosaic: no image sees the mesh's surface from above; nothing to map");
@@ -182,8 +190,9 @@ void PrintMosaicSummary(std::ostream& out, const MosaicSummary& summary) {
       << " views per cell); " << mosaic.num_tiles << " tile(s), " << mosaic.tile_view_reads << " image reads, " << summary.files_decoded
       << " images and confidence maps decoded (the rest came from --image-cache)\n";
   out << "  seam levelling: " << DescribeSeamLevelling(mosaic.levelling) << "\n";
-  out << std::setprecision(1) << "  time: visibility, view selection and seam levelling " << mosaic.seconds_selection << " s, tiles "
-      << mosaic.seconds_tiles << " s\n";
+  out << std::setprecision(1) << "  time: visibility, view selection and seam levelling in " << mosaic.num_blocks
+      << " block(s) of tiles (at most " << mosaic.max_piece_faces << " faces with the surface around a block) "
+      << mosaic.seconds_selection << " s; the rest " << mosaic.seconds_tiles << " s\n";
   out << "  images: " << summary.images.string() << "\n"
       << "  confidence: " << (summary.confidence.empty() ? std::string("not used") : summary.confidence.string()) << "\n";
   out << "  wrote " << summary.ortho.string() << "\n";

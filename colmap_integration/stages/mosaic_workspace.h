@@ -65,7 +65,7 @@ struct MosaicSummary {
 
 // The images' own GSD (see MosaicOptions::gsd); throws std::invalid_argument when no image centre sees
 // the mesh.
-double GsdOfViews(const RaycastScene& scene, const std::vector<TextureView>& views);
+double GsdOfViews(const Mesh& mesh, const std::vector<TextureView>& views);
 
 // Why a model with no georeference cannot be mapped in its own frame (its cameras do not look down its
 // -z), or "" when it can.

@@ -244,6 +244,8 @@ Mesh ReadPly(std::istream& stream) {
       const int texcoord = element.Find("texcoord");
       const int red = element.Find("red"), green = element.Find("green"), blue = element.Find("blue");
       const bool colours = red >= 0 && green >= 0 && blue >= 0;
+      // Triangles, one a face (polygons add more): a vector grown by doubling would hold up to twice that.
+      mesh.faces.reserve(std::min<std::size_t>(element.count, 1u << 24));
       for (std::size_t f = 0; f < element.count; ++f) {
         ReadRecord(reader, element, &record);
         const std::vector<double>& corners = record.lists[indices];
