@@ -132,7 +132,8 @@ cv::Rect OrthoTiling::BlockCells(std::size_t block, const GeoRasterGrid& raster)
   const int bx = static_cast<int>(block % static_cast<std::size_t>(blocks_x));
   const int by = static_cast<int>(block / static_cast<std::size_t>(blocks_x));
   const int side = block_side * tile_size;
-  return cv::Rect(bx * side, by * side, std::min(side, raster.width - bx * side), std::min(side, raster.height - by * side));
+  return cv::Rect(bx * side, by * side, std::min(side, raster.width - bx * side),
+                  std::min(side, raster.height - by * side));
 }
 
 std::vector<cv::Rect> OrthoTiling::TilesOfBlock(std::size_t block, const GeoRasterGrid& raster) const {
@@ -234,7 +235,8 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureVi
   summary.num_cells = static_cast<std::size_t>(raster.width) * static_cast<std::size_t>(raster.height);
   OrthoTiling made_here;
   if (!tiling) {
-    made_here = TileOrthoGrid(mesh, frame, grid, options.tile_size, OrthoBlockSide(mesh, views, grid, options.tile_size));
+    made_here =
+        TileOrthoGrid(mesh, frame, grid, options.tile_size, OrthoBlockSide(mesh, views, grid, options.tile_size));
     tiling = &made_here;
   } else if (tiling->tile_size != options.tile_size) {
     throw std::invalid_argument("mosaic: the tiling is not of the options' tile size");

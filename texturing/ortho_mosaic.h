@@ -11,15 +11,15 @@
 // layout for the same fusion. Its height is the point's height in the map frame. Cells with no surface
 // below them, or whose surface no view sees, are nodata (NaN).
 //
-// The mesh is cut into the tiles' pieces (tile_views.h TiledViewChoice): each face goes to the tile its
-// centroid lies over, and a tile's piece holds its faces and every face that may hide them or lie over
-// its cells, with its own ray-casting scene. Tile by tile, row by row: the cells are cast down on the
-// piece; the views of the tile's faces and of the faces its cells show are chosen and their seams
-// levelled, with the labels and corrections of the tiles before held (so a face shows one label and one
-// correction, whichever tile's cells show it); the cells are fused, reading only the views that may see
-// the tile, handed to the caller and freed with the piece. Memory is bounded by the tile size, the pieces
-// and the threads, plus a label per face; not by the mosaic's size. Results do not depend on the thread
-// count.
+// The tiles are grouped in square blocks about an image's footprint wide (OrthoTiling), and each face
+// goes to the block its centroid lies over. Block by block (tile_views.h TiledViewChoice): the block's
+// piece is its faces and every face that may hide them or lie over its cells, with its own ray-casting
+// scene; the views of the block's faces and of the faces its cells may show are chosen and their seams
+// levelled, with the labels and corrections of the blocks before held (so a face shows one label and one
+// correction, whichever block's cells show it); then each of its tiles, row by row, is cast down on the
+// piece, fused (reading only the views that see it), handed to the caller and freed, and the piece after
+// them. Memory is bounded by the tile and block size and the threads, plus a block and a label per face;
+// not by the mosaic's size. Results do not depend on the thread count.
 
 #include <cstddef>
 #include <cstdint>

@@ -15,7 +15,8 @@ constexpr int kGridCells = 256;
 
 // Distance along the ray to its crossing of the triangle (either side), or +infinity (Möller and
 // Trumbore's test, 1997).
-double CrossingDistance(const Ray3d& ray, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+double CrossingDistance(const Ray3d& ray, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a;
   const Eigen::Vector3d p = ray.direction.cross(ac);
   const double det = ab.dot(p);
