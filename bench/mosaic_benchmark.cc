@@ -2,7 +2,7 @@
 // altitude (640 x 480, 8-bit sRGB PNG, 1 m between images, 3 lines 2 m apart) over a seafloor 6 m wide and
 // 10, 20 or 40 m long (2 cm mesh cells: 0.3, 0.6, 1.2 M faces), mapped at 5 mm. For each: `lutex mosaic`
 // time per output megapixel and peak memory (resident set, in a child process that does nothing else),
-// against plain decoding of the same images in the same run, and the most faces a tile's piece held
+// against plain decoding of the same images in the same run, and the most faces a block's piece held
 // (texturing/tile_views.h). Not a test.
 //
 //   mosaic_benchmark [--num-threads 0] [--tile-size 1024] [--image-cache MiB] [--gdal-cache MiB] [--keep 0]

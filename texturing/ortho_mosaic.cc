@@ -24,9 +24,8 @@ namespace {
 
 // A face is seen from above when its normal is at least this far from horizontal (the cosine).
 constexpr double kMinSeenFromAbove = 1e-6;
-// Most tiles a side of a block (64 Mpixels of 1024-cell tiles): bounds the block when the GSD is far finer
-// than the images'.
-constexpr int kMaxBlockSide = 8;
+// Most cells a side of a block (64 Mpixels): bounds the block when the GSD is far finer than the images'.
+constexpr int kMaxBlockCells = 8192;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -175,7 +174,8 @@ int OrthoBlockSide(const Mesh& mesh, const std::vector<TextureView>& views, cons
   }
   if (footprints.empty()) return 1;
   const double tile_metres = tile_size * grid.raster.gsd;
-  return std::clamp(static_cast<int>(std::lround(MedianInPlace(footprints) / tile_metres)), 1, kMaxBlockSide);
+  const int most = std::max(1, kMaxBlockCells / tile_size);
+  return std::clamp(static_cast<int>(std::lround(MedianInPlace(footprints) / tile_metres)), 1, most);
 }
 
 OrthoTiling TileOrthoGrid(const Mesh& mesh, const MapFrame& frame, const OrthoGrid& grid, int tile_size,
@@ -272,8 +272,11 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureVi
     // The block's piece holds every face over its cells. The faces its cells may show are those whose
     // footprint in the map reaches them; they are chosen with the block's unless a block before chose
     // them. A face reaching beyond the block's cells may be shown by a later block too.
-    const double west = raster.west + block_cells.x * raster.gsd, east = west + block_cells.width * raster.gsd;
-    const double north = raster.north - block_cells.y * raster.gsd, south = north - block_cells.height * raster.gsd;
+    // Its edges in the map, by the expressions its neighbours' edges use.
+    const double west = raster.west + block_cells.x * raster.gsd;
+    const double east = raster.west + (block_cells.x + block_cells.width) * raster.gsd;
+    const double north = raster.north - block_cells.y * raster.gsd;
+    const double south = raster.north - (block_cells.y + block_cells.height) * raster.gsd;
     std::vector<Eigen::AlignedBox2d> footprints;  // of the piece's faces, in the map
     TileUse use;
     use.shown = [&](const TileMesh& piece) {
@@ -289,10 +292,11 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureVi
       }
       return shown;
     };
+    // Reaching a neighbour's cells, or touching its edge (which its `shown` counts).
     use.shown_later = [&](std::uint32_t face) {
       const Eigen::AlignedBox2d& footprint = footprints[face];
-      return footprint.min().x() < west || footprint.max().x() > east || footprint.min().y() < south ||
-             footprint.max().y() > north;
+      return footprint.min().x() <= west || footprint.max().x() >= east || footprint.min().y() <= south ||
+             footprint.max().y() >= north;
     };
     const TilePiece piece = choice.Choose(b, source, &use);
     footprints = {};

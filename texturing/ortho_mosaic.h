@@ -18,8 +18,9 @@
 // levelled, with the labels and corrections of the blocks before held (so a face shows one label and one
 // correction, whichever block's cells show it); then each of its tiles, row by row, is cast down on the
 // piece, fused (reading only the views that see it), handed to the caller and freed, and the piece after
-// them. Memory is bounded by the tile and block size and the threads, plus a block and a label per face;
-// not by the mosaic's size. Results do not depend on the thread count.
+// them. Memory is bounded by the tile and block size and the threads, plus a block and a label per face
+// and the corrections settled along block borders; not by the mosaic's size. Results do not depend on
+// the thread count.
 
 #include <cstddef>
 #include <cstdint>
@@ -89,9 +90,10 @@ struct OrthoTiling {
 std::vector<double> GsdsAtImageCentres(const Mesh& mesh, const std::vector<TextureView>& views);
 
 // Tiles a side of a block: about as many as the median view's footprint on the mesh spans (its image
-// width times the range at its centre over its focal length), at least 1. A tile's views are chosen on
-// the surface within reach of the views that see it: a block as wide as a footprint shares that work
-// among its tiles, at about four blocks' worth of faces (tile_views.h).
+// width times the range at its centre over its focal length), at least 1 and at most 8192 cells. A tile's
+// views are chosen on the surface within reach of the views that see it, about half a footprint around
+// it: a block as wide as a footprint shares that work among its tiles, at about four blocks' worth of
+// faces a piece (tile_views.h).
 int OrthoBlockSide(const Mesh& mesh, const std::vector<TextureView>& views, const OrthoGrid& grid, int tile_size);
 
 // One pass over the mesh's faces.
@@ -118,7 +120,7 @@ struct OrthoMosaicSummary {
   SeamLevellingSummary levelling;
   double seconds_selection = 0.0;  // visibility, view selection and seam levelling
   double seconds_tiles = 0.0;      // the rest
-  std::size_t max_piece_faces = 0;  // the most faces a tile's piece held
+  std::size_t max_piece_faces = 0;  // the most faces a block's piece held
 };
 
 // Hands every tile, block by block and in a block row by row, to `write_tile` (from the calling thread).
