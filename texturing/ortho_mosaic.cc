@@ -165,8 +165,10 @@ std::vector<double> GsdsAtImageCentres(const Mesh& mesh, const std::vector<Textu
   return gsds;
 }
 
-int OrthoBlockSide(const Mesh& mesh, const std::vector<TextureView>& views, const OrthoGrid& grid, int tile_size) {
-  const std::vector<double> gsds = GsdsAtImageCentres(mesh, views);
+int OrthoBlockSide(const std::vector<double>& gsds_at_centres, const std::vector<TextureView>& views,
+                   const OrthoGrid& grid, int tile_size) {
+  if (gsds_at_centres.size() != views.size()) throw std::invalid_argument("block side: one GSD per view");
+  const std::vector<double>& gsds = gsds_at_centres;
   std::vector<double> footprints;
   for (std::size_t v = 0; v < views.size(); ++v) {
     const Camera& camera = views[v].camera;
@@ -236,7 +238,8 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureVi
   OrthoTiling made_here;
   if (!tiling) {
     made_here =
-        TileOrthoGrid(mesh, frame, grid, options.tile_size, OrthoBlockSide(mesh, views, grid, options.tile_size));
+        TileOrthoGrid(mesh, frame, grid, options.tile_size,
+                      OrthoBlockSide(GsdsAtImageCentres(mesh, views), views, grid, options.tile_size));
     tiling = &made_here;
   } else if (tiling->tile_size != options.tile_size) {
     throw std::invalid_argument("mosaic: the tiling is not of the options' tile size");

@@ -41,8 +41,8 @@ void MosaicOptions::Check() const {
   ortho.Check();
 }
 
-double GsdOfViews(const Mesh& mesh, const std::vector<TextureView>& views) {
-  std::vector<double> gsds = GsdsAtImageCentres(mesh, views);
+double GsdOfViews(std::vector<double> gsds_at_centres) {
+  std::vector<double>& gsds = gsds_at_centres;
   gsds.erase(std::remove_if(gsds.begin(), gsds.end(), [](double gsd) { return !std::isfinite(gsd); }), gsds.end());
   if (gsds.empty()) throw OptionError("no image centre sees the mesh: give the mosaic's {gsd}");
   return MedianInPlace(gsds);
@@ -121,11 +121,12 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   }
   double gsd = options.gsd;
   summary.gsd_from_images = gsd == 0.0;
-  if (summary.gsd_from_images) gsd = GsdOfViews(dive.mesh(), found.views);
+  const std::vector<double> gsds_at_centres = GsdsAtImageCentres(dive.mesh(), found.views);  // one pass over the faces
+  if (summary.gsd_from_images) gsd = GsdOfViews(gsds_at_centres);
   summary.grid = OrthoGridOfMesh(dive.mesh(), frame, gsd);
   const int tile_size = options.ortho.tile_size;
   const OrthoTiling tiling = TileOrthoGrid(dive.mesh(), frame, summary.grid, tile_size,
-                                           OrthoBlockSide(dive.mesh(), found.views, summary.grid, tile_size));
+                                           OrthoBlockSide(gsds_at_centres, found.views, summary.grid, tile_size));
   // A block's views are chosen on its piece, the block and the surface around it within reach of the
   // views that see it (ortho_mosaic.h), taken as kPieceBlocks blocks' worth of the fullest block.
   const std::size_t piece_faces = std::min(dive.mesh().faces.size(), kPieceBlocks * tiling.MostFaces());

@@ -63,9 +63,9 @@ struct MosaicSummary {
   double seconds = 0.0;
 };
 
-// The images' own GSD (see MosaicOptions::gsd); throws std::invalid_argument when no image centre sees
-// the mesh.
-double GsdOfViews(const Mesh& mesh, const std::vector<TextureView>& views);
+// The images' own GSD (see MosaicOptions::gsd), the median of GsdsAtImageCentres's finite ones; throws
+// std::invalid_argument when no image centre sees the mesh (all infinite).
+double GsdOfViews(std::vector<double> gsds_at_centres);
 
 // Why a model with no georeference cannot be mapped in its own frame (its cameras do not look down its
 // -z), or "" when it can.

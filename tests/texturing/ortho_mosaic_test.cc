@@ -177,17 +177,19 @@ TEST(OrthoMosaic, ABlockOfTilesSpansAboutAnImagesFootprint) {
   }
   const MapFrame frame{Georeference()};
   const OrthoGrid grid = OrthoGridOfMesh(floor, frame, 0.01);
-  EXPECT_EQ(OrthoBlockSide(floor, views, grid, 64), 4);   // 2.56 m of 0.64 m tiles
-  EXPECT_EQ(OrthoBlockSide(floor, views, grid, 128), 2);  // of 1.28 m tiles
-  EXPECT_EQ(OrthoBlockSide(floor, views, grid, 512), 1);  // a tile wider than an image's footprint
-  EXPECT_EQ(OrthoBlockSide(floor, views, grid, 16), 16);  // of 0.16 m tiles
+  const std::vector<double> gsds = GsdsAtImageCentres(floor, views);
+  EXPECT_EQ(OrthoBlockSide(gsds, views, grid, 64), 4);   // 2.56 m of 0.64 m tiles
+  EXPECT_EQ(OrthoBlockSide(gsds, views, grid, 128), 2);  // of 1.28 m tiles
+  EXPECT_EQ(OrthoBlockSide(gsds, views, grid, 512), 1);  // a tile wider than an image's footprint
+  EXPECT_EQ(OrthoBlockSide(gsds, views, grid, 16), 16);  // of 0.16 m tiles
   // At most 8192 cells a side: at 0.1 mm, 400 tiles of 64 cells would span a footprint.
-  EXPECT_EQ(OrthoBlockSide(floor, views, OrthoGridOfMesh(floor, frame, 1e-4), 64), 128);
+  EXPECT_EQ(OrthoBlockSide(gsds, views, OrthoGridOfMesh(floor, frame, 1e-4), 64), 128);
   // No image centre on the mesh: blocks of one tile.
   for (TextureView& view : views) view.cam_from_world = CamFromWorldLookingAt(Eigen::Vector3d(0.0, 0.0, 2.0),
                                                                                Eigen::Vector3d::UnitZ(),
                                                                                Eigen::Vector3d::UnitY());
-  EXPECT_EQ(OrthoBlockSide(floor, views, grid, 64), 1);
+  EXPECT_EQ(OrthoBlockSide(GsdsAtImageCentres(floor, views), views, grid, 64), 1);
+  EXPECT_THROW(OrthoBlockSide({0.01}, views, grid, 64), std::invalid_argument);  // not one GSD per view
 }
 
 }  // namespace
