@@ -6,6 +6,10 @@
 // (texturing/tile_views.h). Not a test.
 //
 //   mosaic_benchmark [--num-threads 0] [--tile-size 1024] [--image-cache MiB] [--gdal-cache MiB] [--keep 0]
+//                    [--runs 1]
+//
+// --runs N runs `lutex mosaic` N times per area, each in its own child, and prints the median time and
+// peak, with the lowest and highest peak: single runs' peaks differ by up to a tenth (measure_in_child.h).
 //
 // --keep 1 leaves the simulated dives in /tmp/lutex_mosaic_benchmark/dive_N/W, to run `lutex mosaic` on
 // them under a profiler.
@@ -35,7 +39,6 @@ namespace fs = std::filesystem;
 struct Measurement {
   double seconds = 0.0;
   double peak_mib = 0.0;
-  double decode_seconds = 0.0;
   double megapixels = 0.0;
   double tiles = 0.0;
   double image_reads = 0.0;
@@ -59,7 +62,6 @@ Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size, st
                    std::size_t gdal_cache_bytes) {
   using namespace lutex;
   Measurement measurement;
-  measurement.decode_seconds = bench::DecodeSeconds(workspace, num_threads);
   MosaicOptions options;
   options.workspace = workspace;
   options.mesh = workspace / "scene" / "mesh.ply";
@@ -90,26 +92,32 @@ int main(int argc, char** argv) {
   const int tile_size = bench::IntOption(argc, argv, "--tile-size", 1024);
   const int cache_mib = bench::IntOption(argc, argv, "--image-cache", int(kDefaultPictureCacheBytes >> 20));
   const bool keep = bench::IntOption(argc, argv, "--keep", 0) != 0;
+  const int runs = std::max(1, bench::IntOption(argc, argv, "--runs", 1));
   const int gdal_cache_mib = bench::IntOption(argc, argv, "--gdal-cache", int(MosaicOptions().gdal_cache_bytes >> 20));
   SetLogLevel(LogLevel::kWarning);
   const fs::path root = fs::temp_directory_path() / "lutex_mosaic_benchmark";
   fs::remove_all(root);
-  std::printf("mosaic benchmark: %d threads, tiles of %d pixels, image cache %d MiB, GDAL cache %d MiB, 5 mm GSD\n",
-              num_threads, tile_size, cache_mib, gdal_cache_mib);
-  std::printf("%6s %7s %8s %6s %7s %11s %11s %13s %8s %11s %13s\n", "area", "images", "Mpixels", "tiles", "reads",
-              "decode [s]", "mosaic [s]", "s/Mpixel", "ratio", "peak [MiB]", "piece faces");
+  std::printf("mosaic benchmark: %d threads, tiles of %d pixels, image cache %d MiB, GDAL cache %d MiB, 5 mm GSD; "
+              "mosaic: median of %d run(s)\n",
+              num_threads, tile_size, cache_mib, gdal_cache_mib, runs);
+  std::printf("%6s %7s %8s %6s %7s %11s %11s %13s %8s %11s %13s %13s\n", "area", "images", "Mpixels", "tiles", "reads",
+              "decode [s]", "mosaic [s]", "s/Mpixel", "ratio", "peak [MiB]", "(runs' range)", "piece faces");
   for (const int factor : {1, 2, 4}) {
     const fs::path dive = root / ("dive_" + std::to_string(factor));
     bench::InChild<Measurement>([&] {
       SimulateMosaicDive(dive, 10.0 * factor, num_threads);
       return Measurement{};
     });
-    const Measurement m = bench::InChild<Measurement>(
+    const double decode_seconds = bench::DecodeSeconds(dive / "W", num_threads);
+    bench::PeakSpread spread;
+    const Measurement m = bench::InChildren<Measurement>(
+        runs,
         [&] { return Mosaic(dive / "W", num_threads, tile_size, std::size_t(cache_mib) << 20,
-                            std::size_t(gdal_cache_mib) << 20); });
-    std::printf("%5dx %7.0f %8.1f %6.0f %7.0f %11.2f %11.2f %13.3f %8.1f %11.0f %13.0f\n", factor, m.images,
-                m.megapixels, m.tiles, m.image_reads, m.decode_seconds, m.seconds, m.seconds / m.megapixels,
-                m.seconds / m.decode_seconds, m.peak_mib, m.piece_faces);
+                            std::size_t(gdal_cache_mib) << 20); },
+        &spread);
+    std::printf("%5dx %7.0f %8.1f %6.0f %7.0f %11.2f %11.2f %13.3f %8.1f %11.0f %6.0f - %4.0f %13.0f\n", factor,
+                m.images, m.megapixels, m.tiles, m.image_reads, decode_seconds, m.seconds, m.seconds / m.megapixels,
+                m.seconds / decode_seconds, m.peak_mib, spread.lowest_mib, spread.highest_mib, m.piece_faces);
     std::fflush(stdout);
     if (!keep) fs::remove_all(dive);
   }

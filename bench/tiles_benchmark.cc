@@ -4,7 +4,10 @@
 // against plain decoding of the same images in the same run, and the tile count. What tiling promises:
 // peak memory that does not grow with the area. Not a test.
 //
-//   tiles_benchmark [--images 50] [--tile-faces 100000] [--image-cache MiB] [--num-threads 0]
+//   tiles_benchmark [--images 50] [--tile-faces 100000] [--image-cache MiB] [--num-threads 0] [--runs 1]
+//
+// --runs N runs `lutex tiles` N times per area, each in its own child, and prints the median time and
+// peak, with the lowest and highest peak: single runs' peaks differ by up to a tenth (measure_in_child.h).
 //
 // --image-cache sets `lutex tiles`' decoded-picture cache (default: the command's). The cache is a budget:
 // it fills up to it and no further, so with the default the small images of the 1x area all fit and the
@@ -95,15 +98,16 @@ int main(int argc, char** argv) {
   const int tile_faces = bench::IntOption(argc, argv, "--tile-faces", 100000);
   const int cache_mib = bench::IntOption(argc, argv, "--image-cache", int(kDefaultPictureCacheBytes >> 20));
   const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  const int runs = std::max(1, bench::IntOption(argc, argv, "--runs", 1));
   SetLogLevel(LogLevel::kWarning);
   const fs::path root = fs::temp_directory_path() / "lutex_tiles_benchmark";
   fs::remove_all(root);
   const int images_per_line = std::max(1, images / 4);
   std::printf("tiles benchmark: %d threads, %d faces a tile, image cache %d MiB; areas 1x, 2x, 4x of 10 x 6.25 m "
-              "(312 k faces, %d images)\n",
-              num_threads, tile_faces, cache_mib, 4 * images_per_line);
-  std::printf("%5s %8s %7s %11s %10s %7s %11s %12s %10s %11s\n", "area", "Mfaces", "images", "decode [s]",
-              "tiles [s]", "ratio", "tiles [MiB]", "texture [s]", "ratio", "tex. [MiB]");
+              "(312 k faces, %d images); tiles: median of %d run(s)\n",
+              num_threads, tile_faces, cache_mib, 4 * images_per_line, runs);
+  std::printf("%5s %8s %7s %11s %10s %7s %11s %13s %12s %10s %11s\n", "area", "Mfaces", "images", "decode [s]",
+              "tiles [s]", "ratio", "tiles [MiB]", "(runs' range)", "texture [s]", "ratio", "tex. [MiB]");
   const struct {
     int factor, width, height;
   } areas[] = {{1, 1, 1}, {2, 2, 1}, {4, 2, 2}};
@@ -114,13 +118,15 @@ int main(int argc, char** argv) {
       return Measurement{};
     });
     const double decode = bench::DecodeSeconds(dive / "W", num_threads);
-    const Measurement tiles = bench::InChild<Measurement>([&] { return Tiles(dive / "W", tile_faces, std::size_t(cache_mib) << 20, num_threads); });
+    bench::PeakSpread spread;
+    const Measurement tiles = bench::InChildren<Measurement>(
+        runs, [&] { return Tiles(dive / "W", tile_faces, std::size_t(cache_mib) << 20, num_threads); }, &spread);
     const Measurement texture = bench::InChild<Measurement>([&] { return Texture(dive / "W", num_threads); });
-    std::printf("%4dx %8.2f %7d %11.2f %10.2f %7.1f %11.0f %12.2f %10.1f %11.0f   (%0.f tiles; views chosen on "
-                "pieces of at most %.0f k faces)\n",
+    std::printf("%4dx %8.2f %7d %11.2f %10.2f %7.1f %11.0f %6.0f - %4.0f %12.2f %10.1f %11.0f   (%0.f tiles; views "
+                "chosen on pieces of at most %.0f k faces)\n",
                 area.factor, tiles.faces / 1e6, 4 * images_per_line * area.factor, decode, tiles.seconds,
-                tiles.seconds / decode, tiles.peak_mib, texture.seconds, texture.seconds / decode, texture.peak_mib,
-                tiles.tiles, tiles.piece_faces / 1e3);
+                tiles.seconds / decode, tiles.peak_mib, spread.lowest_mib, spread.highest_mib, texture.seconds,
+                texture.seconds / decode, texture.peak_mib, tiles.tiles, tiles.piece_faces / 1e3);
     std::fflush(stdout);
     fs::remove_all(dive);
   }
