@@ -25,6 +25,7 @@
 #include "texturing/tile_mesh.h"
 #include "texturing/tile_views.h"
 #include "texturing/tileset_json.h"
+#include "texturing/waiting_tile.h"
 
 namespace lutex {
 
@@ -61,14 +62,14 @@ double TexturedArea(const TexturedMesh& textured) {
   return area;
 }
 
-// What a finished tile hands to its parent.
+// What a finished tile hands to its parent: its geometry, its texture at half the resolution and the
+// view of each face, on disk while it waits (texturing/waiting_tile.h), and in memory only what the
+// tileset needs.
 struct BakedTile {
-  TileMesh geometry;
   Eigen::AlignedBox3d box;         // of its content and its children's, in the tiles frame
   double geometric_error = 0.0;
   double texel_size = 0.0;         // scene units per texel of its texture
-  TexturedMesh halved_texture;     // its texture at half the resolution, which its parent is made from
-  std::vector<std::uint32_t> view_of_face;  // the view each face was textured from (kNoView: none)
+  fs::path waiting;                // the WaitingTile's file (none for the root)
 };
 
 // Bakes the tree bottom-up, writing each tile's GLB into `folder` and its entry into `tileset`.
@@ -78,7 +79,9 @@ class TileBaker {
             TiledViewChoice& choice, const TilesOptions& options, const TexturedMesh& frame,
             const Eigen::Matrix3d& tiles_from_model, fs::path folder, Tileset& tileset, TilesSummary& summary)
       : tree_(tree), views_(views), source_(source), choice_(choice), options_(options), frame_(frame),
-        tiles_from_model_(tiles_from_model), folder_(std::move(folder)), tileset_(tileset), summary_(summary) {
+        tiles_from_model_(tiles_from_model), folder_(std::move(folder)), waiting_folder_(folder_ / "waiting"),
+        tileset_(tileset), summary_(summary) {
+    fs::create_directories(waiting_folder_);
     tileset_.tiles.resize(tree_.nodes.size());
     for (std::size_t n = 0; n < tree_.nodes.size(); ++n) {
       if (tree_.nodes[n].children.empty()) leaf_of_node_[n] = leaf_of_node_.size();
@@ -88,6 +91,7 @@ class TileBaker {
   BakedTile Bake(std::size_t node_index) {
     const TileNode& node = tree_.nodes[node_index];
     BakedTile baked;
+    WaitingTile made;  // what the parent will be made from
     TexturedMesh textured;
     if (node.children.empty()) {
       TextureBakingSummary baking;
@@ -95,9 +99,9 @@ class TileBaker {
       std::vector<std::uint32_t> vertex_in_piece;
       textured = BakeFaces(piece.piece.mesh, views_, *piece.raycaster, source_, piece.chosen,
                            piece.tile_faces, options_.baking, vertex_in_piece, baking);
-      for (std::uint32_t v : vertex_in_piece) baked.geometry.source_vertex.push_back(piece.piece.source_vertex[v]);
-      baked.geometry.mesh = textured.mesh;
-      for (std::uint32_t f : piece.tile_faces) baked.view_of_face.push_back(piece.chosen.selection.view_of_face[f]);
+      for (std::uint32_t v : vertex_in_piece) made.geometry.source_vertex.push_back(piece.piece.source_vertex[v]);
+      made.geometry.mesh = textured.mesh;
+      for (std::uint32_t f : piece.tile_faces) made.view_of_face.push_back(piece.chosen.selection.view_of_face[f]);
       baked.texel_size = baking.num_texels > 0 ? std::sqrt(TexturedArea(textured) / double(baking.num_texels))
                                                : options_.baking.charts.texel_size;
       leaf_texel_sizes_.push_back(baked.texel_size);
@@ -106,35 +110,45 @@ class TileBaker {
     } else {
       std::vector<BakedTile> children;
       for (std::size_t child : node.children) children.push_back(Bake(child));
-      std::vector<const TileMesh*> parts;
-      std::vector<TransferSource> textures;
+      std::vector<WaitingTile> waited;  // read back now that the last child is done
       double children_error = 0.0, children_texel = 0.0;
-      for (BakedTile& child : children) {
-        parts.push_back(&child.geometry);
-        textures.push_back({&child.halved_texture, &child.view_of_face});
+      for (const BakedTile& child : children) {
+        waited.push_back(ReadWaitingTile(child.waiting));
+        fs::remove(child.waiting);
         baked.box.extend(child.box);
         children_error = std::max(children_error, child.geometric_error);
         children_texel = std::max(children_texel, child.texel_size);
       }
+      std::vector<const TileMesh*> parts;
+      std::vector<TransferSource> textures;
+      for (const WaitingTile& child : waited) {
+        parts.push_back(&child.geometry);
+        textures.push_back({&child.halved_texture, &child.view_of_face});
+      }
       SimplifiedTileMesh simplified = SimplifyTileMesh(MergeTileMeshes(parts), options_.tree.max_faces);
-      baked.geometry = std::move(simplified.tile);
+      made.geometry = std::move(simplified.tile);
       baked.texel_size = 2.0 * children_texel;
       TextureBakingOptions baking = options_.baking;
       baking.charts.texel_size = baked.texel_size;
       // The children's surface lies within the simplification's error of the parent's; a few texels more
       // cover the rounding of both.
-      TransferredTexture transferred = TransferTexture(textures, baked.geometry.mesh, views_,
+      TransferredTexture transferred = TransferTexture(textures, made.geometry.mesh, views_,
                                                        simplified.error + 4.0 * baked.texel_size, baking);
-      children.clear();
+      waited.clear();
       textured = std::move(transferred.textured);
-      baked.view_of_face = std::move(transferred.view_of_face);
+      made.view_of_face = std::move(transferred.view_of_face);
       baked.geometric_error = std::max(simplified.error + children_error, baked.texel_size);
     }
-    for (const Eigen::Vector3d& vertex : baked.geometry.mesh.vertices) baked.box.extend(tiles_from_model_ * vertex);
+    for (const Eigen::Vector3d& vertex : made.geometry.mesh.vertices) baked.box.extend(tiles_from_model_ * vertex);
     textured.up = frame_.up;
     textured.georeference = frame_.georeference;
     const std::string uri = node.name + ".glb";
-    if (node_index != 0) baked.halved_texture = HalveTexture(textured);
+    if (node_index != 0) {
+      made.halved_texture = HalveTexture(textured);
+      baked.waiting = waiting_folder_ / (node.name + ".tile");
+      WriteWaitingTile(made, baked.waiting);
+    }
+    made = WaitingTile();
     const std::size_t num_faces = textured.mesh.faces.size();
     WriteInBackground(std::move(textured), folder_ / uri);
     summary_.max_tile_faces = std::max(summary_.max_tile_faces, num_faces);
@@ -145,6 +159,7 @@ class TileBaker {
     tile.children = node.children;
     LogInfo() << "tiles: " << ++done_ << "/" << tree_.nodes.size() << " tiles baked (" << node.name << ", "
               << num_faces << " faces)";
+    if (node_index == 0) fs::remove_all(waiting_folder_);  // every tile has been read back
     return baked;
   }
 
@@ -176,6 +191,7 @@ class TileBaker {
   const TexturedMesh& frame_;  // its up and georeference
   const Eigen::Matrix3d tiles_from_model_;
   const fs::path folder_;
+  const fs::path waiting_folder_;  // the waiting tiles' files, in folder_ and removed when the root is done
   Tileset& tileset_;
   TilesSummary& summary_;
   std::size_t done_ = 0;
