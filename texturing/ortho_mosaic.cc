@@ -165,10 +165,9 @@ std::vector<double> GsdsAtImageCentres(const Mesh& mesh, const std::vector<Textu
   return gsds;
 }
 
-int OrthoBlockSide(const std::vector<double>& gsds_at_centres, const std::vector<TextureView>& views,
-                   const OrthoGrid& grid, int tile_size) {
-  if (gsds_at_centres.size() != views.size()) throw std::invalid_argument("block side: one GSD per view");
-  const std::vector<double>& gsds = gsds_at_centres;
+int OrthoBlockSide(const std::vector<double>& gsds, const std::vector<TextureView>& views, const OrthoGrid& grid,
+                   int tile_size) {
+  if (gsds.size() != views.size()) throw std::invalid_argument("block side: one GSD per view");
   std::vector<double> footprints;
   for (std::size_t v = 0; v < views.size(); ++v) {
     const Camera& camera = views[v].camera;

@@ -94,9 +94,9 @@ std::vector<double> GsdsAtImageCentres(const Mesh& mesh, const std::vector<Textu
 // views are chosen on the surface within reach of the views that see it, about half a footprint around
 // it: a block as wide as a footprint shares that work among its tiles, at about four blocks' worth of
 // faces a piece (tile_views.h).
-// `gsds_at_centres`: GsdsAtImageCentres's, one per view.
-int OrthoBlockSide(const std::vector<double>& gsds_at_centres, const std::vector<TextureView>& views,
-                   const OrthoGrid& grid, int tile_size);
+// `gsds`: GsdsAtImageCentres's, one per view.
+int OrthoBlockSide(const std::vector<double>& gsds, const std::vector<TextureView>& views, const OrthoGrid& grid,
+                   int tile_size);
 
 // One pass over the mesh's faces.
 OrthoTiling TileOrthoGrid(const Mesh& mesh, const MapFrame& frame, const OrthoGrid& grid, int tile_size,

@@ -1,9 +1,10 @@
 #include "texturing/waiting_tile.h"
 
-#include <algorithm>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+
+#include "lib/util/binary_io.h"
 
 namespace lutex {
 
@@ -11,22 +12,25 @@ namespace {
 
 constexpr char kMagic[] = "lutex-waiting-tile 1\n";
 
-// Arrays of plain values (Eigen's fixed-size vectors included: their bytes are their coefficients).
+// Arrays of plain values (Eigen's fixed-size vectors included: their bytes are their coefficients), each
+// after its count.
 template <typename T>
 void WriteArray(std::ostream& out, const std::vector<T>& values) {
-  const std::uint64_t count = values.size();
-  out.write(reinterpret_cast<const char*>(&count), sizeof(count));
-  out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(count * sizeof(T)));
+  WriteBinary(out, static_cast<std::uint64_t>(values.size()));
+  out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(T)));
 }
 
+// Throws std::runtime_error("truncated file: it ends inside <what>") when the file holds fewer values than
+// its count says (checked before allocating).
 template <typename T>
-void ReadArray(std::istream& in, std::uint64_t bytes_left, std::vector<T>& values) {
-  std::uint64_t count = 0;
-  in.read(reinterpret_cast<char*>(&count), sizeof(count));
-  if (!in || count > bytes_left / sizeof(T)) throw std::runtime_error("truncated");
+void ReadArray(std::istream& in, const char* what, std::vector<T>& values) {
+  const auto count = ReadBinary<std::uint64_t>(in, what);
+  if (count > BytesLeft(in).value_or(0) / sizeof(T)) {
+    throw std::runtime_error(std::string("truncated file: it ends inside ") + what);
+  }
   values.resize(count);
   in.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(count * sizeof(T)));
-  if (!in) throw std::runtime_error("truncated");
+  if (!in) throw std::runtime_error(std::string("truncated file: it ends inside ") + what);
 }
 
 void WriteMesh(std::ostream& out, const Mesh& mesh) {
@@ -39,14 +43,14 @@ void WriteMesh(std::ostream& out, const Mesh& mesh) {
   WriteArray(out, mesh.corner_texcoords);
 }
 
-void ReadMesh(std::istream& in, std::uint64_t bytes, Mesh& mesh) {
-  ReadArray(in, bytes, mesh.vertices);
-  ReadArray(in, bytes, mesh.faces);
-  ReadArray(in, bytes, mesh.vertex_colors);
-  ReadArray(in, bytes, mesh.vertex_texcoords);
-  ReadArray(in, bytes, mesh.vertex_normals);
-  ReadArray(in, bytes, mesh.face_colors);
-  ReadArray(in, bytes, mesh.corner_texcoords);
+void ReadMesh(std::istream& in, Mesh& mesh) {
+  ReadArray(in, "the vertices", mesh.vertices);
+  ReadArray(in, "the faces", mesh.faces);
+  ReadArray(in, "the vertex colours", mesh.vertex_colors);
+  ReadArray(in, "the vertex texture coordinates", mesh.vertex_texcoords);
+  ReadArray(in, "the vertex normals", mesh.vertex_normals);
+  ReadArray(in, "the face colours", mesh.face_colors);
+  ReadArray(in, "the corner texture coordinates", mesh.corner_texcoords);
 }
 
 }  // namespace
@@ -57,12 +61,11 @@ void WriteWaitingTile(const WaitingTile& tile, const std::filesystem::path& path
   WriteMesh(out, tile.geometry.mesh);
   WriteArray(out, tile.geometry.source_vertex);
   const TexturedMesh& texture = tile.halved_texture;
-  const std::uint64_t num_pages = texture.pages.size();
-  out.write(reinterpret_cast<const char*>(&num_pages), sizeof(num_pages));
+  WriteBinary(out, static_cast<std::uint64_t>(texture.pages.size()));
   for (const cv::Mat& page : texture.pages) {
     if (page.type() != CV_32FC3) throw std::invalid_argument("waiting tile: a page that is not CV_32FC3");
-    const std::int32_t size[2] = {page.rows, page.cols};
-    out.write(reinterpret_cast<const char*>(size), sizeof(size));
+    WriteBinary(out, static_cast<std::int32_t>(page.rows));
+    WriteBinary(out, static_cast<std::int32_t>(page.cols));
     for (int row = 0; row < page.rows; ++row) {
       out.write(page.ptr<char>(row), static_cast<std::streamsize>(page.cols * page.elemSize()));
     }
@@ -77,37 +80,32 @@ void WriteWaitingTile(const WaitingTile& tile, const std::filesystem::path& path
 WaitingTile ReadWaitingTile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot open the waiting tile");
-  in.seekg(0, std::ios::end);
-  const std::uint64_t bytes = static_cast<std::uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
-  in.seekg(0);
   WaitingTile tile;
   try {
     std::string magic(sizeof(kMagic) - 1, '\0');
     in.read(magic.data(), static_cast<std::streamsize>(magic.size()));
     if (!in || magic != kMagic) throw std::runtime_error("not a waiting tile");
-    ReadMesh(in, bytes, tile.geometry.mesh);
-    ReadArray(in, bytes, tile.geometry.source_vertex);
+    ReadMesh(in, tile.geometry.mesh);
+    ReadArray(in, "the source vertices", tile.geometry.source_vertex);
     TexturedMesh& texture = tile.halved_texture;
-    std::uint64_t num_pages = 0;
-    in.read(reinterpret_cast<char*>(&num_pages), sizeof(num_pages));
-    if (!in || num_pages > bytes) throw std::runtime_error("truncated");
+    const auto num_pages = ReadBinary<std::uint64_t>(in, "the page count");
     for (std::uint64_t p = 0; p < num_pages; ++p) {
-      std::int32_t size[2] = {0, 0};
-      in.read(reinterpret_cast<char*>(size), sizeof(size));
-      if (!in || size[0] < 0 || size[1] < 0 ||
-          std::uint64_t(size[0]) * std::uint64_t(size[1]) * 3 * sizeof(float) > bytes) {
-        throw std::runtime_error("truncated");
+      const auto rows = ReadBinary<std::int32_t>(in, "a page's size");
+      const auto cols = ReadBinary<std::int32_t>(in, "a page's size");
+      if (rows < 0 || cols < 0 ||
+          std::uint64_t(rows) * std::uint64_t(cols) * 3 * sizeof(float) > BytesLeft(in).value_or(0)) {
+        throw std::runtime_error("truncated file: it ends inside a page");
       }
-      cv::Mat page(size[0], size[1], CV_32FC3);
+      cv::Mat page(rows, cols, CV_32FC3);
       for (int row = 0; row < page.rows; ++row) {
         in.read(page.ptr<char>(row), static_cast<std::streamsize>(page.cols * page.elemSize()));
       }
-      if (!in) throw std::runtime_error("truncated");
+      if (!in) throw std::runtime_error("truncated file: it ends inside a page");
       texture.pages.push_back(page);
     }
-    ReadArray(in, bytes, texture.face_page);
-    ReadArray(in, bytes, texture.face_corner_texels);
-    ReadArray(in, bytes, tile.view_of_face);
+    ReadArray(in, "the faces' pages", texture.face_page);
+    ReadArray(in, "the faces' texel corners", texture.face_corner_texels);
+    ReadArray(in, "the faces' views", tile.view_of_face);
   } catch (const std::runtime_error& error) {
     throw std::runtime_error(path.string() + ": " + error.what() + " (a waiting tile of a tiled bake)");
   }

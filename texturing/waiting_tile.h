@@ -12,7 +12,8 @@
 //
 // The file is lutex's own (not a format to exchange): "lutex-waiting-tile 1", then each array as a count
 // and its values' bytes as this machine lays them out (doubles, floats and 32-bit integers), the atlas
-// pages as rows, columns and CV_32FC3 texels. Read back, everything is as it was, to the bit.
+// pages as rows, columns and CV_32FC3 texels; counts and sizes through lib/util/binary_io.h. Read back,
+// everything is as it was, to the bit.
 
 #include <cstdint>
 #include <filesystem>

@@ -41,8 +41,7 @@ void MosaicOptions::Check() const {
   ortho.Check();
 }
 
-double GsdOfViews(std::vector<double> gsds_at_centres) {
-  std::vector<double>& gsds = gsds_at_centres;
+double GsdOfViews(std::vector<double> gsds) {
   gsds.erase(std::remove_if(gsds.begin(), gsds.end(), [](double gsd) { return !std::isfinite(gsd); }), gsds.end());
   if (gsds.empty()) throw OptionError("no image centre sees the mesh: give the mosaic's {gsd}");
   return MedianInPlace(gsds);

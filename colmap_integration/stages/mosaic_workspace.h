@@ -65,7 +65,7 @@ struct MosaicSummary {
 
 // The images' own GSD (see MosaicOptions::gsd), the median of GsdsAtImageCentres's finite ones; throws
 // std::invalid_argument when no image centre sees the mesh (all infinite).
-double GsdOfViews(std::vector<double> gsds_at_centres);
+double GsdOfViews(std::vector<double> gsds);
 
 // Why a model with no georeference cannot be mapped in its own frame (its cameras do not look down its
 // -z), or "" when it can.
