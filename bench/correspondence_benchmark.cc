@@ -14,6 +14,7 @@
 #include <string>
 
 #include "bench/bench_dive.h"
+#include "bench/bench_folder.h"
 #include "bench/bench_options.h"
 #include "colmap_integration/io/sparse_model_io.h"
 #include "lib/calibration/survey_correspondences.h"
@@ -24,14 +25,17 @@
 #include "lib/util/parallel_for.h"
 
 int main(int argc, char** argv) {
+  lutex::bench::Options args(argc, argv, "correspondence_benchmark [--images 100] [--num-threads 0]");
   using namespace lutex;
   namespace fs = std::filesystem;
-  const int images = bench::IntOption(argc, argv, "--images", 100);
-  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  const int images = args.Int("--images", 100);
+  const int num_threads = ResolveNumThreads(args.Int("--num-threads", 0));
+  args.CheckAllRead();
   const int lines = 5;
   const int per_line = std::max(1, images / lines);
   SetLogLevel(LogLevel::kWarning);
-  const fs::path root = fs::temp_directory_path() / "lutex_correspondence_benchmark";
+  const lutex::bench::BenchFolder folder("lutex_correspondence_benchmark");
+  const fs::path root = folder.path();
   fs::remove_all(root);
   bench::SimulateDive(root, R"({"synthetic": {"size": [12, 10]}})",
                       R"({"model": "PINHOLE", "width": 1152, "height": 864, "params": [720, 720, 576, 432]})",

@@ -85,9 +85,11 @@ Measurement Fit(int images, int num_threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lutex::bench::Options args(argc, argv, "mesh_benchmark [--images 100] [--num-threads 0]");
   using namespace lutex;
-  const int images = bench::IntOption(argc, argv, "--images", 100);
-  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  const int images = args.Int("--images", 100);
+  const int num_threads = ResolveNumThreads(args.Int("--num-threads", 0));
+  args.CheckAllRead();
   SetLogLevel(LogLevel::kWarning);
   std::printf("mesh benchmark: %d threads; 12 MP images, 2000 sparse points each (the fit only, not the simulation)\n",
               num_threads);

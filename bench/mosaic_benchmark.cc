@@ -24,6 +24,7 @@
 #include <string>
 
 #include "bench/bench_dive.h"
+#include "bench/bench_folder.h"
 #include "bench/bench_options.h"
 #include "bench/measure_in_child.h"
 #include "colmap_integration/io/sparse_model_io.h"
@@ -87,15 +88,18 @@ Measurement Mosaic(const fs::path& workspace, int num_threads, int tile_size, st
 }  // namespace
 
 int main(int argc, char** argv) {
+  lutex::bench::Options args(argc, argv, "mosaic_benchmark [--num-threads 0] [--tile-size 1024] [--image-cache MiB] [--gdal-cache MiB] [--keep 0] [--runs 1]");
   using namespace lutex;
-  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
-  const int tile_size = bench::IntOption(argc, argv, "--tile-size", 1024);
-  const int cache_mib = bench::IntOption(argc, argv, "--image-cache", int(kDefaultPictureCacheBytes >> 20));
-  const bool keep = bench::IntOption(argc, argv, "--keep", 0) != 0;
-  const int runs = std::max(1, bench::IntOption(argc, argv, "--runs", 1));
-  const int gdal_cache_mib = bench::IntOption(argc, argv, "--gdal-cache", int(MosaicOptions().gdal_cache_bytes >> 20));
+  const int num_threads = ResolveNumThreads(args.Int("--num-threads", 0));
+  const int tile_size = args.Int("--tile-size", 1024);
+  const int cache_mib = args.Int("--image-cache", int(kDefaultPictureCacheBytes >> 20));
+  const bool keep = args.Int("--keep", 0) != 0;
+  const int runs = std::max(1, args.Int("--runs", 1));
+  const int gdal_cache_mib = args.Int("--gdal-cache", int(MosaicOptions().gdal_cache_bytes >> 20));
+  args.CheckAllRead();
   SetLogLevel(LogLevel::kWarning);
-  const fs::path root = fs::temp_directory_path() / "lutex_mosaic_benchmark";
+  const lutex::bench::BenchFolder folder("lutex_mosaic_benchmark");
+  const fs::path root = folder.path();
   fs::remove_all(root);
   std::printf("mosaic benchmark: %d threads, tiles of %d pixels, image cache %d MiB, GDAL cache %d MiB, 5 mm GSD; "
               "mosaic: median of %d run(s)\n",

@@ -85,11 +85,13 @@ double BareEmbreeSeconds(const lutex::Mesh& mesh, const lutex::Camera& camera, c
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int width = lutex::bench::IntOption(argc, argv, "--width", 4000);
-  const int height = lutex::bench::IntOption(argc, argv, "--height", 3000);
-  const int cells = lutex::bench::IntOption(argc, argv, "--cells", 710);
-  const int repeats = lutex::bench::IntOption(argc, argv, "--repeats", 3);
-  const int num_threads = lutex::ResolveNumThreads(lutex::bench::IntOption(argc, argv, "--num-threads", 0));
+  lutex::bench::Options args(argc, argv, "raycast_benchmark [--width 4000] [--height 3000] [--cells 710] [--repeats 3] [--num-threads 0]");
+  const int width = args.Int("--width", 4000);
+  const int height = args.Int("--height", 3000);
+  const int cells = args.Int("--cells", 710);
+  const int repeats = args.Int("--repeats", 3);
+  const int num_threads = lutex::ResolveNumThreads(args.Int("--num-threads", 0));
+  args.CheckAllRead();
 
   const lutex::Mesh mesh = lutex::MakeHeightFieldMesh(
       [](double x, double y) { return 0.2 * std::sin(2.0 * x) * std::cos(1.5 * y); }, -4, 4, -3, 3, cells, cells);

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "bench/bench_dive.h"
+#include "bench/bench_folder.h"
 #include "bench/bench_options.h"
 #include "colmap_integration/io/confidence_map_io.h"
 #include "colmap_integration/stages/restore_workspace.h"
@@ -30,13 +31,16 @@
 #include "lib/util/parallel_for.h"
 
 int main(int argc, char** argv) {
+  lutex::bench::Options args(argc, argv, "restore_benchmark [--images 24] [--width 1280] [--num-threads 0]");
   using namespace lutex;
   namespace fs = std::filesystem;
-  const int images = bench::IntOption(argc, argv, "--images", 24);
-  const int width = bench::IntOption(argc, argv, "--width", 1280);
+  const int images = args.Int("--images", 24);
+  const int width = args.Int("--width", 1280);
   const int height = width * 3 / 4;
-  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
-  const fs::path root = fs::temp_directory_path() / "lutex_restore_benchmark";
+  const int num_threads = ResolveNumThreads(args.Int("--num-threads", 0));
+  args.CheckAllRead();
+  const lutex::bench::BenchFolder folder("lutex_restore_benchmark");
+  const fs::path root = folder.path();
   fs::remove_all(root);
   bench::SimulateDive(root, R"({"synthetic": {"size": [12, 10]}})",
                       R"({"model": "PINHOLE", "width": )" + std::to_string(width) + R"(, "height": )" +

@@ -19,9 +19,11 @@ namespace {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lutex::bench::Options args(argc, argv, "simulate_benchmark [--repeats 3] [--num-threads 0]");
   using namespace lutex;
-  const int repeats = lutex::bench::IntOption(argc, argv, "--repeats", 3);
-  const int num_threads = ResolveNumThreads(lutex::bench::IntOption(argc, argv, "--num-threads", 0));
+  const int repeats = args.Int("--repeats", 3);
+  const int num_threads = ResolveNumThreads(args.Int("--num-threads", 0));
+  args.CheckAllRead();
   const Mesh seafloor = MakeSyntheticSeafloor(SyntheticSeafloorOptions());
   LightRig rig;
   for (double x : {-0.4, 0.4}) {

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "bench/bench_dive.h"
+#include "bench/bench_folder.h"
 #include "bench/bench_options.h"
 #include "bench/bench_texture.h"
 #include "bench/measure_in_child.h"
@@ -59,11 +60,14 @@ Measurement Texture(const fs::path& workspace, int num_threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lutex::bench::Options args(argc, argv, "texture_benchmark [--images 200] [--num-threads 0]");
   using namespace lutex;
-  const int images = bench::IntOption(argc, argv, "--images", 200);
-  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  const int images = args.Int("--images", 200);
+  const int num_threads = ResolveNumThreads(args.Int("--num-threads", 0));
+  args.CheckAllRead();
   SetLogLevel(LogLevel::kWarning);
-  const fs::path root = fs::temp_directory_path() / "lutex_texture_benchmark";
+  const lutex::bench::BenchFolder folder("lutex_texture_benchmark");
+  const fs::path root = folder.path();
   fs::remove_all(root);
   const int images_per_line = 20;
   const int lines = std::max(1, images / images_per_line);

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "bench/bench_dive.h"
+#include "bench/bench_folder.h"
 #include "bench/bench_options.h"
 #include "bench/bench_texture.h"
 #include "bench/measure_in_child.h"
@@ -135,12 +136,16 @@ Stages MeasureWhole(const fs::path& workspace, int num_threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lutex::bench::Options args(argc, argv, "texture_stages_benchmark [--images 24] [--width 4000] [--num-threads 0] [--keep 0]");
   using namespace lutex;
-  const int images = bench::IntOption(argc, argv, "--images", 24);
-  const int width = bench::IntOption(argc, argv, "--width", 4000);
-  const int num_threads = ResolveNumThreads(bench::IntOption(argc, argv, "--num-threads", 0));
+  const int images = args.Int("--images", 24);
+  const int width = args.Int("--width", 4000);
+  const int num_threads = ResolveNumThreads(args.Int("--num-threads", 0));
+  const bool keep = args.Int("--keep", 0) != 0;
+  args.CheckAllRead();
   SetLogLevel(LogLevel::kWarning);
-  const fs::path root = fs::temp_directory_path() / "lutex_texture_stages_benchmark";
+  const lutex::bench::BenchFolder folder("lutex_texture_stages_benchmark");
+  const fs::path root = folder.path();
   fs::remove_all(root);
   bench::InChild<Stages>([&] {
     SimulateDive12Mp(root, images, width, num_threads);
@@ -162,7 +167,7 @@ int main(int argc, char** argv) {
               total / stages.decode_seconds);
   std::printf("%-32s %10.2f %12.0f   (ratio to decoding %.1f)\n", "lutex texture as a whole", whole.total_seconds,
               whole.peak_mib, whole.total_seconds / stages.decode_seconds);
-  if (bench::IntOption(argc, argv, "--keep", 0) != 0) {
+  if (keep) {
     std::printf("the workspace is kept in %s\n", (root / "W").c_str());
   } else {
     fs::remove_all(root);
