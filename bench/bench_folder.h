@@ -1,9 +1,9 @@
 #pragma once
 
-// The scratch folder of a benchmark, /tmp/NAME, held for as long as the benchmark runs. A benchmark
-// empties its folder when it starts, so a second run of it beside the first would delete the first's
-// dives under it; instead the second exits with one line naming the first (lib/util/file_lock.h, on
-// /tmp/NAME.lock, which the kernel releases however the holder ends).
+// The scratch folder of a benchmark, /tmp/NAME, held for as long as the benchmark runs and emptied when it
+// is taken (what an earlier run kept with --keep goes). A second run of the same benchmark beside the
+// first would delete the first's dives under it; instead it exits with one line naming the first
+// (lib/util/file_lock.h, on /tmp/NAME.lock, which the kernel releases however the holder ends).
 
 #include <cstdio>
 #include <cstdlib>
@@ -26,6 +26,7 @@ class BenchFolder {
       std::fprintf(stderr, "%s\n", error.what());
       std::exit(2);
     }
+    std::filesystem::remove_all(path_);
   }
   const std::filesystem::path& path() const { return path_; }
 

@@ -7,15 +7,15 @@
 //   const bool keep = args.Int("--keep", 0) != 0;
 //   args.CheckAllRead();
 //
-// `--help` (or `-h`) prints the usage and what the benchmark's source says about it, and exits 0. An
+// `--help` (or `-h`) prints the usage and where the options are described, and exits 0. An
 // option the benchmark does not read, one without a value or with a value that is not an integer prints
 // one line naming it and the usage, and exits 2: a mistyped option is not silently left at its default.
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lutex::bench {

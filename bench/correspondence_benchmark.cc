@@ -36,7 +36,6 @@ int main(int argc, char** argv) {
   SetLogLevel(LogLevel::kWarning);
   const lutex::bench::BenchFolder folder("lutex_correspondence_benchmark");
   const fs::path root = folder.path();
-  fs::remove_all(root);
   bench::SimulateDive(root, R"({"synthetic": {"size": [12, 10]}})",
                       R"({"model": "PINHOLE", "width": 1152, "height": 864, "params": [720, 720, 576, 432]})",
                       R"({"pattern": "lawnmower", "x": [-4.5, 4.5], "y": [-3, 3], "lines": )" + std::to_string(lines) +

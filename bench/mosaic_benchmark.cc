@@ -100,7 +100,6 @@ int main(int argc, char** argv) {
   SetLogLevel(LogLevel::kWarning);
   const lutex::bench::BenchFolder folder("lutex_mosaic_benchmark");
   const fs::path root = folder.path();
-  fs::remove_all(root);
   std::printf("mosaic benchmark: %d threads, tiles of %d pixels, image cache %d MiB, GDAL cache %d MiB, 5 mm GSD; "
               "mosaic: median of %d run(s)\n",
               num_threads, tile_size, cache_mib, gdal_cache_mib, runs);

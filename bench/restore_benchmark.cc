@@ -41,7 +41,6 @@ int main(int argc, char** argv) {
   args.CheckAllRead();
   const lutex::bench::BenchFolder folder("lutex_restore_benchmark");
   const fs::path root = folder.path();
-  fs::remove_all(root);
   bench::SimulateDive(root, R"({"synthetic": {"size": [12, 10]}})",
                       R"({"model": "PINHOLE", "width": )" + std::to_string(width) + R"(, "height": )" +
                           std::to_string(height) + R"(, "params": [)" + std::to_string(width / 2) + ", " +

@@ -68,7 +68,6 @@ int main(int argc, char** argv) {
   SetLogLevel(LogLevel::kWarning);
   const lutex::bench::BenchFolder folder("lutex_texture_benchmark");
   const fs::path root = folder.path();
-  fs::remove_all(root);
   const int images_per_line = 20;
   const int lines = std::max(1, images / images_per_line);
   std::printf("texture benchmark: %d threads; %d and %d images of 640 x 480 over 1.25 M faces\n", num_threads,

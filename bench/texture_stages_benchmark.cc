@@ -146,7 +146,6 @@ int main(int argc, char** argv) {
   SetLogLevel(LogLevel::kWarning);
   const lutex::bench::BenchFolder folder("lutex_texture_stages_benchmark");
   const fs::path root = folder.path();
-  fs::remove_all(root);
   bench::InChild<Stages>([&] {
     SimulateDive12Mp(root, images, width, num_threads);
     return Stages{};

@@ -115,7 +115,6 @@ int main(int argc, char** argv) {
   SetLogLevel(LogLevel::kWarning);
   const lutex::bench::BenchFolder folder("lutex_tiles_benchmark");
   const fs::path root = folder.path();
-  fs::remove_all(root);
   const int images_per_line = std::max(1, images / 4);
   std::printf("tiles benchmark: %d threads, %d faces a tile, image cache %d MiB; areas 1x, 2x, 4x of %d x 10 x 6.25 m "
               "(%d x 312 k faces, %d images); tiles: median of %d run(s)\n",

@@ -20,17 +20,14 @@ void WriteArray(std::ostream& out, const std::vector<T>& values) {
   out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(T)));
 }
 
-// Throws std::runtime_error("truncated file: it ends inside <what>") when the file holds fewer values than
-// its count says (checked before allocating).
+// ThrowTruncated(what) when the file holds fewer values than its count says (checked before allocating).
 template <typename T>
 void ReadArray(std::istream& in, const char* what, std::vector<T>& values) {
   const auto count = ReadBinary<std::uint64_t>(in, what);
-  if (count > BytesLeft(in).value_or(0) / sizeof(T)) {
-    throw std::runtime_error(std::string("truncated file: it ends inside ") + what);
-  }
+  if (count > BytesLeft(in).value_or(0) / sizeof(T)) ThrowTruncated(what);
   values.resize(count);
   in.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(count * sizeof(T)));
-  if (!in) throw std::runtime_error(std::string("truncated file: it ends inside ") + what);
+  if (!in) ThrowTruncated(what);
 }
 
 void WriteMesh(std::ostream& out, const Mesh& mesh) {
@@ -94,13 +91,13 @@ WaitingTile ReadWaitingTile(const std::filesystem::path& path) {
       const auto cols = ReadBinary<std::int32_t>(in, "a page's size");
       if (rows < 0 || cols < 0 ||
           std::uint64_t(rows) * std::uint64_t(cols) * 3 * sizeof(float) > BytesLeft(in).value_or(0)) {
-        throw std::runtime_error("truncated file: it ends inside a page");
+        ThrowTruncated("a page");
       }
       cv::Mat page(rows, cols, CV_32FC3);
       for (int row = 0; row < page.rows; ++row) {
         in.read(page.ptr<char>(row), static_cast<std::streamsize>(page.cols * page.elemSize()));
       }
-      if (!in) throw std::runtime_error("truncated file: it ends inside a page");
+      if (!in) ThrowTruncated("a page");
       texture.pages.push_back(page);
     }
     ReadArray(in, "the faces' pages", texture.face_page);

@@ -13,14 +13,18 @@
 
 namespace lutex {
 
+// Throws std::runtime_error("truncated file: it ends inside <what>"): what a reader of a binary file says
+// when the file ends before a value it holds (or a count it gives) does.
+[[noreturn]] inline void ThrowTruncated(const std::string& what) {
+  throw std::runtime_error("truncated file: it ends inside " + what);
+}
+
 template <typename T>
 T ReadBinary(std::istream& stream, const char* what) {
   static_assert(std::is_trivially_copyable<T>::value, "plain values only");
   T value;
   stream.read(reinterpret_cast<char*>(&value), sizeof(T));
-  if (stream.gcount() != static_cast<std::streamsize>(sizeof(T))) {
-    throw std::runtime_error(std::string("truncated file: it ends inside ") + what);
-  }
+  if (stream.gcount() != static_cast<std::streamsize>(sizeof(T))) ThrowTruncated(what);
   return value;
 }
 
