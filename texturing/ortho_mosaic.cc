@@ -224,7 +224,8 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureVi
                                    const ViewImageSource& source, const MapFrame& frame, const OrthoGrid& grid,
                                    const OrthoMosaicOptions& options,
                                    const std::function<void(const OrthoTile&)>& write_tile,
-                                   const OrthoTiling* tiling) {
+                                   const std::filesystem::path& scratch, const OrthoTiling* tiling,
+                                   const std::function<void()>& mesh_on_disk) {
   const auto start = std::chrono::steady_clock::now();
   options.Check();
   if (views.empty()) throw std::invalid_argument("mosaic: no views");
@@ -261,7 +262,8 @@ OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureVi
     for (const Eigen::Vector3d& corner : corners) spans[b].extend(corner);
     blocks[b] = &tiling->faces[b];
   }
-  TiledViewChoice choice(mesh, views, blocks, options.baking, spans);
+  TiledViewChoice choice(mesh, views, blocks, options.baking, scratch, spans);
+  if (mesh_on_disk) mesh_on_disk();
 
   TexelFusionOptions fusion = options.baking.fusion;
   fusion.num_threads = num_threads;

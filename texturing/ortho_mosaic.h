@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <vector>
 
@@ -127,12 +128,15 @@ struct OrthoMosaicSummary {
 
 // Hands every tile, block by block and in a block row by row, to `write_tile` (from the calling thread).
 // `tiling`: TileOrthoGrid's for options.tile_size when the caller has made it (null: made here, with
-// OrthoBlockSide's blocks). Throws what CheckSurfaceFromAbove, the
-// image source and `write_tile` throw.
+// OrthoBlockSide's blocks). The mesh is kept on disk block by block beside `scratch` while the mosaic is
+// made (tile_views.h), under a temporary name; then `mesh_on_disk`, when given, is called: neither `mesh`
+// nor the tiling's face lists are used after it, and the caller may free them. Throws what
+// CheckSurfaceFromAbove, the image source and `write_tile` throw.
 OrthoMosaicSummary MakeOrthoMosaic(const Mesh& mesh, const std::vector<TextureView>& views,
                                    const ViewImageSource& source, const MapFrame& frame, const OrthoGrid& grid,
                                    const OrthoMosaicOptions& options,
                                    const std::function<void(const OrthoTile&)>& write_tile,
-                                   const OrthoTiling* tiling = nullptr);
+                                   const std::filesystem::path& scratch, const OrthoTiling* tiling = nullptr,
+                                   const std::function<void()>& mesh_on_disk = {});
 
 }  // namespace lutex

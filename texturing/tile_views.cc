@@ -18,36 +18,23 @@ constexpr int kBorderSamples = 16;
 // The extent grows by this fraction of its width on each side: a margin for the bending between samples.
 constexpr double kExtentMargin = 0.05;
 
-Eigen::AlignedBox3d FaceBox(const Mesh& mesh, std::uint32_t face) {
-  Eigen::AlignedBox3d box;
-  for (std::uint32_t v : mesh.faces[face]) box.extend(mesh.vertices[v]);
-  return box;
-}
-
 std::uint64_t SettledKey(std::uint32_t vertex, std::uint32_t view) { return std::uint64_t(vertex) << 32 | view; }
 
 }  // namespace
 
 TiledViewChoice::TiledViewChoice(const Mesh& mesh, const std::vector<TextureView>& views,
-                                 std::vector<const std::vector<std::uint32_t>*> tiles,
-                                 const TextureBakingOptions& options, const std::vector<Eigen::AlignedBox3d>& spans)
-    : mesh_(mesh), views_(views), tiles_(std::move(tiles)), options_(options),
-      strides_(CastEveryView(mesh, views, options.visibility.rays_per_face)),
-      view_of_face_(mesh.faces.size(), kChooseView) {
+                                 const std::vector<const std::vector<std::uint32_t>*>& tiles,
+                                 const TextureBakingOptions& options, const std::filesystem::path& scratch,
+                                 const std::vector<Eigen::AlignedBox3d>& spans)
+    : views_(views), options_(options), strides_(CastEveryView(mesh, views, options.visibility.rays_per_face)),
+      mesh_file_(mesh, tiles, scratch), view_of_face_(mesh.faces.size(), kChooseView) {
   options_.Check();
-  if (!spans.empty() && spans.size() != tiles_.size()) throw std::invalid_argument("tiled views: one span per tile");
-  std::size_t num_faces = 0;
-  for (const std::vector<std::uint32_t>* faces : tiles_) {
-    Eigen::AlignedBox3d box;
-    if (!spans.empty()) box = spans[tile_boxes_.size()];
-    for (std::uint32_t f : *faces) {
-      if (f >= mesh.faces.size()) throw std::invalid_argument("tiled views: a tile's face is not in the mesh");
-      box.extend(FaceBox(mesh, f));
-    }
+  if (!spans.empty() && spans.size() != tiles.size()) throw std::invalid_argument("tiled views: one span per tile");
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    Eigen::AlignedBox3d box = mesh_file_.box(t);
+    if (!spans.empty()) box.extend(spans[t]);
     tile_boxes_.push_back(box);
-    num_faces += faces->size();
   }
-  if (num_faces != mesh.faces.size()) throw std::invalid_argument("tiled views: the tiles must hold each face once");
   for (const Mesh::Face& face : mesh.faces) {
     for (int k = 0; k < 3; ++k) {
       longest_edge_ = std::max(longest_edge_, (mesh.vertices[face[k]] - mesh.vertices[face[(k + 1) % 3]]).norm());
@@ -90,7 +77,7 @@ bool TiledViewChoice::MaySee(std::size_t view, const Eigen::AlignedBox3d& box) c
 
 TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& source, const TileUse* use) {
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<std::uint32_t>& faces = *tiles_.at(tile);
+  if (tile >= tile_boxes_.size()) throw std::out_of_range("tiled views: no such tile");
   Eigen::AlignedBox3d grown = tile_boxes_[tile];
   grown.min().array() -= longest_edge_;
   grown.max().array() += longest_edge_;
@@ -105,19 +92,19 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
     part.casts.views.push_back(static_cast<std::uint32_t>(v));
     reach.extend(views_[v].cam_from_world.TargetOriginInSource());
   }
-  std::vector<std::uint32_t> piece_faces;
-  for (std::size_t t = 0; t < tiles_.size(); ++t) {
-    if (!tile_boxes_[t].intersects(reach)) continue;
-    for (std::uint32_t f : *tiles_[t]) {
-      if (t == tile || FaceBox(mesh_, f).intersects(reach)) piece_faces.push_back(f);
-    }
+  std::vector<std::size_t> near;
+  for (std::size_t t = 0; t < tile_boxes_.size(); ++t) {
+    if (tile_boxes_[t].intersects(reach)) near.push_back(t);
   }
-  std::sort(piece_faces.begin(), piece_faces.end());
+  TiledMeshFile::Piece read = mesh_file_.Read(near, [&](std::size_t t, const Eigen::AlignedBox3d& face_box) {
+    return t == tile || face_box.intersects(reach);
+  });
+  const std::vector<std::uint32_t>& piece_faces = read.mesh_face;
   if (piece_faces.empty()) {  // nothing within reach: no scene
     return TilePiece{{}, {}, nullptr, nullptr, ChosenViews{FaceViewCandidates(0, 1), {}, {}, {}, 0.0, 0.0}};
   }
 
-  TileMesh piece = ExtractTileMesh(mesh_, piece_faces);
+  TileMesh& piece = read.tile_mesh;
   std::vector<bool> shown(piece_faces.size(), false);
   if (use) {
     for (std::uint32_t i : use->shown(piece)) shown.at(i) = true;
@@ -126,11 +113,10 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
   std::vector<std::uint32_t> tile_faces;
   part.given.resize(piece_faces.size());
   std::vector<bool> here(piece_faces.size(), false);
-  for (std::size_t i = 0, j = 0; i < piece_faces.size(); ++i) {
+  for (std::size_t i = 0; i < piece_faces.size(); ++i) {
     const std::uint32_t f = piece_faces[i];
-    while (j < faces.size() && faces[j] < f) ++j;
     const bool chosen_before = view_of_face_[f] != kChooseView;
-    here[i] = !chosen_before && (shown[i] || (j < faces.size() && faces[j] == f));
+    here[i] = !chosen_before && (shown[i] || read.tile[i] == tile);
     if (here[i]) tile_faces.push_back(static_cast<std::uint32_t>(i));
     part.given[i] = here[i] ? kChooseView : chosen_before ? view_of_face_[f] : kNoView;
     shown[i] = shown[i] && !here[i];

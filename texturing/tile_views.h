@@ -16,8 +16,9 @@
 //   3. the seam levelling of the tile's faces, with the corrections the tiles before settled held at the
 //      vertices they share (seam_levelling.h SeamLevellingPart): a border shows one correction from both
 //      sides.
-// Kept for the whole dive between tiles: each face's label (4 bytes) and the corrections at the vertices
-// of tile borders. The rest (the piece, its scene, adjacency and candidates) lives as long as the tile's
+// Kept for the whole dive between tiles: each face's label (4 bytes), the corrections at the vertices of
+// tile borders, and the mesh on disk tile by tile (tiled_mesh_file.h), from which each piece is read: the
+// mesh and the tiles' face lists the choice is made from may be freed once it is constructed. The rest (the piece, its scene, adjacency and candidates) lives as long as the tile's
 // bake, which BakeFaces does with the piece's choice.
 //
 // Tiles are chosen in the order they are asked for, and the result depends on that order (the later of
@@ -30,6 +31,7 @@
 // So every face shows one label and one set of corrections, whichever tile shows it.
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <unordered_map>
@@ -43,6 +45,7 @@
 #include "texturing/texture_baker.h"
 #include "texturing/texture_views.h"
 #include "texturing/tile_mesh.h"
+#include "texturing/tiled_mesh_file.h"
 
 namespace lutex {
 
@@ -65,11 +68,12 @@ struct TileUse {
 class TiledViewChoice {
  public:
   // `tiles`: the faces of each tile, ascending; together each face of `mesh` once. `spans`: one box per
-  // tile that the faces it shows lie in besides its own (empty: none). The tiles are referred to, not
-  // copied, and must outlive the choice.
+  // tile that the faces it shows lie in besides its own (empty: none). The mesh is written tile by tile
+  // beside `scratch`, under a temporary name, until the choice is destroyed; neither `mesh` nor `tiles`
+  // is used after the constructor. `views` are referred to and must outlive the choice.
   TiledViewChoice(const Mesh& mesh, const std::vector<TextureView>& views,
-                  std::vector<const std::vector<std::uint32_t>*> tiles, const TextureBakingOptions& options,
-                  const std::vector<Eigen::AlignedBox3d>& spans = {});
+                  const std::vector<const std::vector<std::uint32_t>*>& tiles, const TextureBakingOptions& options,
+                  const std::filesystem::path& scratch, const std::vector<Eigen::AlignedBox3d>& spans = {});
 
   // Chooses the views of tile `tile` (each tile once), and of the faces `use` shows that no tile chose
   // before. With no face within the tile's reach, the piece is empty and has no scene. Throws what the
@@ -87,11 +91,10 @@ class TiledViewChoice {
   // frustum (conservative: the frustum is the image's border, sampled, grown by a little).
   bool MaySee(std::size_t view, const Eigen::AlignedBox3d& box) const;
 
-  const Mesh& mesh_;
   const std::vector<TextureView>& views_;
-  std::vector<const std::vector<std::uint32_t>*> tiles_;
   TextureBakingOptions options_;
   VisibilityCasts strides_;                     // every view's stride on the whole mesh
+  TiledMeshFile mesh_file_;
   std::shared_ptr<ViewRayTables> rays_ = std::make_shared<ViewRayTables>();  // shared by the pieces
   std::vector<Eigen::AlignedBox3d> tile_boxes_;  // of each tile's faces and span
   double longest_edge_ = 0.0;

@@ -12,42 +12,24 @@ namespace {
 
 constexpr char kMagic[] = "lutex-waiting-tile 1\n";
 
-// Arrays of plain values (Eigen's fixed-size vectors included: their bytes are their coefficients), each
-// after its count.
-template <typename T>
-void WriteArray(std::ostream& out, const std::vector<T>& values) {
-  WriteBinary(out, static_cast<std::uint64_t>(values.size()));
-  out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(T)));
-}
-
-// ThrowTruncated(what) when the file holds fewer values than its count says (checked before allocating).
-template <typename T>
-void ReadArray(std::istream& in, const char* what, std::vector<T>& values) {
-  const auto count = ReadBinary<std::uint64_t>(in, what);
-  if (count > BytesLeft(in).value_or(0) / sizeof(T)) ThrowTruncated(what);
-  values.resize(count);
-  in.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(count * sizeof(T)));
-  if (!in) ThrowTruncated(what);
-}
-
 void WriteMesh(std::ostream& out, const Mesh& mesh) {
-  WriteArray(out, mesh.vertices);
-  WriteArray(out, mesh.faces);
-  WriteArray(out, mesh.vertex_colors);
-  WriteArray(out, mesh.vertex_texcoords);
-  WriteArray(out, mesh.vertex_normals);
-  WriteArray(out, mesh.face_colors);
-  WriteArray(out, mesh.corner_texcoords);
+  WriteBinaryArray(out, mesh.vertices);
+  WriteBinaryArray(out, mesh.faces);
+  WriteBinaryArray(out, mesh.vertex_colors);
+  WriteBinaryArray(out, mesh.vertex_texcoords);
+  WriteBinaryArray(out, mesh.vertex_normals);
+  WriteBinaryArray(out, mesh.face_colors);
+  WriteBinaryArray(out, mesh.corner_texcoords);
 }
 
 void ReadMesh(std::istream& in, Mesh& mesh) {
-  ReadArray(in, "the vertices", mesh.vertices);
-  ReadArray(in, "the faces", mesh.faces);
-  ReadArray(in, "the vertex colours", mesh.vertex_colors);
-  ReadArray(in, "the vertex texture coordinates", mesh.vertex_texcoords);
-  ReadArray(in, "the vertex normals", mesh.vertex_normals);
-  ReadArray(in, "the face colours", mesh.face_colors);
-  ReadArray(in, "the corner texture coordinates", mesh.corner_texcoords);
+  ReadBinaryArray(in, "the vertices", mesh.vertices);
+  ReadBinaryArray(in, "the faces", mesh.faces);
+  ReadBinaryArray(in, "the vertex colours", mesh.vertex_colors);
+  ReadBinaryArray(in, "the vertex texture coordinates", mesh.vertex_texcoords);
+  ReadBinaryArray(in, "the vertex normals", mesh.vertex_normals);
+  ReadBinaryArray(in, "the face colours", mesh.face_colors);
+  ReadBinaryArray(in, "the corner texture coordinates", mesh.corner_texcoords);
 }
 
 }  // namespace
@@ -56,7 +38,7 @@ void WriteWaitingTile(const WaitingTile& tile, const std::filesystem::path& path
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(kMagic, sizeof(kMagic) - 1);
   WriteMesh(out, tile.geometry.mesh);
-  WriteArray(out, tile.geometry.source_vertex);
+  WriteBinaryArray(out, tile.geometry.source_vertex);
   const TexturedMesh& texture = tile.halved_texture;
   WriteBinary(out, static_cast<std::uint64_t>(texture.pages.size()));
   for (const cv::Mat& page : texture.pages) {
@@ -67,9 +49,9 @@ void WriteWaitingTile(const WaitingTile& tile, const std::filesystem::path& path
       out.write(page.ptr<char>(row), static_cast<std::streamsize>(page.cols * page.elemSize()));
     }
   }
-  WriteArray(out, texture.face_page);
-  WriteArray(out, texture.face_corner_texels);
-  WriteArray(out, tile.view_of_face);
+  WriteBinaryArray(out, texture.face_page);
+  WriteBinaryArray(out, texture.face_corner_texels);
+  WriteBinaryArray(out, tile.view_of_face);
   out.flush();
   if (!out) throw std::runtime_error(path.string() + ": could not write a waiting tile (is the disk full?)");
 }
@@ -83,7 +65,7 @@ WaitingTile ReadWaitingTile(const std::filesystem::path& path) {
     in.read(magic.data(), static_cast<std::streamsize>(magic.size()));
     if (!in || magic != kMagic) throw std::runtime_error("not a waiting tile");
     ReadMesh(in, tile.geometry.mesh);
-    ReadArray(in, "the source vertices", tile.geometry.source_vertex);
+    ReadBinaryArray(in, "the source vertices", tile.geometry.source_vertex);
     TexturedMesh& texture = tile.halved_texture;
     const auto num_pages = ReadBinary<std::uint64_t>(in, "the page count");
     for (std::uint64_t p = 0; p < num_pages; ++p) {
@@ -100,9 +82,9 @@ WaitingTile ReadWaitingTile(const std::filesystem::path& path) {
       if (!in) ThrowTruncated("a page");
       texture.pages.push_back(page);
     }
-    ReadArray(in, "the faces' pages", texture.face_page);
-    ReadArray(in, "the faces' texel corners", texture.face_corner_texels);
-    ReadArray(in, "the faces' views", tile.view_of_face);
+    ReadBinaryArray(in, "the faces' pages", texture.face_page);
+    ReadBinaryArray(in, "the faces' texel corners", texture.face_corner_texels);
+    ReadBinaryArray(in, "the faces' views", tile.view_of_face);
   } catch (const std::runtime_error& error) {
     throw std::runtime_error(path.string() + ": " + error.what() + " (a waiting tile of a tiled bake)");
   }

@@ -29,16 +29,23 @@ class LoadedDive {
   const Workspace& workspace() const { return workspace_; }
   const SparseModel& model() const { return model_; }
   const std::filesystem::path& mesh_path() const { return mesh_path_; }
-  const Mesh& mesh() const { return mesh_; }
+  // Throw std::logic_error once the mesh is released.
+  const Mesh& mesh() const;
   // Built on first use (`lutex tiles` casts each tile's piece of the mesh instead, and needs none).
   // Thread-safe.
   const RaycastScene& scene() const;
+
+  // Frees the mesh and its scene, for a stage that keeps what it needs of them elsewhere (`lutex tiles`
+  // keeps the mesh on disk tile by tile), so that they do not take memory for the whole dive while it runs.
+  void ReleaseMesh();
+  bool has_mesh() const { return !mesh_released_; }
 
  private:
   Workspace workspace_;
   SparseModel model_;
   std::filesystem::path mesh_path_;
   Mesh mesh_;
+  bool mesh_released_ = false;
   mutable std::once_flag scene_built_;
   mutable std::unique_ptr<RaycastScene> scene_;
 };

@@ -93,10 +93,11 @@ cv::Mat RgbaOf(const cv::Mat& colour, ImageEncoding encoding) {
 MosaicSummary MosaicWorkspace(const MosaicOptions& options) {
   options.Check();
   PathsOf(options, FindWorkspace(options.workspace)).Check();
-  return MosaicWorkspace(options, LoadedDive(options.workspace, options.mesh));
+  LoadedDive dive(options.workspace, options.mesh);
+  return MosaicWorkspace(options, dive);
 }
 
-MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& dive) {
+MosaicSummary MosaicWorkspace(const MosaicOptions& options, LoadedDive& dive) {
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
@@ -124,8 +125,8 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
   if (summary.gsd_from_images) gsd = GsdOfViews(gsds_at_centres);
   summary.grid = OrthoGridOfMesh(dive.mesh(), frame, gsd);
   const int tile_size = options.ortho.tile_size;
-  const OrthoTiling tiling = TileOrthoGrid(dive.mesh(), frame, summary.grid, tile_size,
-                                           OrthoBlockSide(gsds_at_centres, found.views, summary.grid, tile_size));
+  OrthoTiling tiling = TileOrthoGrid(dive.mesh(), frame, summary.grid, tile_size,
+                                     OrthoBlockSide(gsds_at_centres, found.views, summary.grid, tile_size));
   // A block's views are chosen on its piece, the block and the surface around it within reach of the
   // views that see it (ortho_mosaic.h), taken as kPieceBlocks blocks' worth of the fullest block.
   const std::size_t piece_faces = std::min(dive.mesh().faces.size(), kPieceBlocks * tiling.MostFaces());
@@ -156,7 +157,12 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& di
                                      ortho.WriteTile(tile.col, tile.row, RgbaOf(tile.colour, options.encoding));
                                      if (dem) dem->WriteTile(tile.col, tile.row, tile.height);
                                    },
-                                   &tiling);
+                                   summary.ortho.string() + ".mesh", &tiling, [&] {
+                                     dive.ReleaseMesh();
+                                     for (std::vector<std::uint32_t>& faces : tiling.faces) {
+                                       std::vector<std::uint32_t>().swap(faces);
+                                     }
+                                   });
   summary.files_decoded = found.pictures->decodes();
   if (summary.mosaic.seen_cells == 0) {
     throw std::runtime_error("mosaic: no image sees the mesh's surface from above; nothing to map");

@@ -73,7 +73,8 @@ std::string WhyNotAMapWithoutGeoreference(const SparseModel& model);
 
 MosaicSummary MosaicWorkspace(const MosaicOptions& options);
 // The same on a dive loaded before: `dive` holds the workspace and mesh of `options`.
-MosaicSummary MosaicWorkspace(const MosaicOptions& options, const LoadedDive& dive);
+// Releases the dive's mesh (LoadedDive::ReleaseMesh) once it is on disk block by block.
+MosaicSummary MosaicWorkspace(const MosaicOptions& options, LoadedDive& dive);
 
 // The lines the stage prints when done.
 void PrintMosaicSummary(std::ostream& out, const MosaicSummary& summary);

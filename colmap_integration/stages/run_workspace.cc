@@ -342,9 +342,10 @@ class DiveRun {
     return record;
   }
 
-  // The model, mesh and ray-casting scene, loaded by the first stage that runs and shared by the others.
-  const LoadedDive& Dive() {
-    if (!loaded_) loaded_ = std::make_unique<LoadedDive>(options_.workspace, mesh_);
+  // The model, mesh and ray-casting scene, loaded by the first stage that runs and shared by the others
+  // (loaded again after a stage that released the mesh).
+  LoadedDive& Dive() {
+    if (!loaded_ || !loaded_->has_mesh()) loaded_ = std::make_unique<LoadedDive>(options_.workspace, mesh_);
     return *loaded_;
   }
 

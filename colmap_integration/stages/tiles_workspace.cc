@@ -210,10 +210,11 @@ int Depth(const TileTree& tree) {
 TilesSummary TilesWorkspace(const TilesOptions& options) {
   options.Check();
   PathsOf(options, FindWorkspace(options.workspace)).Check();
-  return TilesWorkspace(options, LoadedDive(options.workspace, options.mesh));
+  LoadedDive dive(options.workspace, options.mesh);
+  return TilesWorkspace(options, dive);
 }
 
-TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive) {
+TilesSummary TilesWorkspace(const TilesOptions& options, LoadedDive& dive) {
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
@@ -244,7 +245,7 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   const Eigen::Matrix3d tiles_from_model = TilesFromModel(summary.up.up);
   if (found.views.empty()) throw std::invalid_argument("tiles: no views to texture from");
 
-  const TileTree tree = PartitionIntoTiles(dive.mesh(), tiles_from_model, options.tree);
+  TileTree tree = PartitionIntoTiles(dive.mesh(), tiles_from_model, options.tree);
   summary.num_tiles = tree.nodes.size();
   summary.num_leaves = tree.NumLeaves();
   summary.depth = Depth(tree);
@@ -255,21 +256,26 @@ TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive)
   for (const TileNode& node : tree.nodes) {
     if (node.children.empty()) leaves.push_back(&node.faces);
   }
-  TiledViewChoice choice(dive.mesh(), found.views, std::move(leaves), options.baking);
-
   AtomicOutputFile folder(output);
   fs::create_directories(folder.temporary_path());
+  // From here on the mesh is read from disk a piece at a time: what the dive held is freed.
+  // The choice's scratch file is in the folder: it goes before the folder is committed.
+  auto choice = std::make_unique<TiledViewChoice>(dive.mesh(), found.views, leaves, options.baking,
+                                                  folder.temporary_path() / "mesh");
+  dive.ReleaseMesh();
+  for (TileNode& node : tree.nodes) std::vector<std::uint32_t>().swap(node.faces);
   TexturedMesh frame;
   frame.up = summary.up.up;
   frame.georeference = georeference;
   Tileset tileset;
-  TileBaker baker(tree, found.views, source, choice, options, frame, tiles_from_model, folder.temporary_path(),
+  TileBaker baker(tree, found.views, source, *choice, options, frame, tiles_from_model, folder.temporary_path(),
                   tileset, summary);
   baker.Bake(0);
   baker.FinishWriting();
-  summary.seconds_views = choice.seconds();
-  summary.levelling = choice.levelling();
-  summary.max_piece_faces = choice.max_piece_faces();
+  summary.seconds_views = choice->seconds();
+  summary.levelling = choice->levelling();
+  summary.max_piece_faces = choice->max_piece_faces();
+  choice.reset();
   std::vector<double> texels = baker.leaf_texel_sizes();
   std::nth_element(texels.begin(), texels.begin() + texels.size() / 2, texels.end());
   summary.leaf_texel_size = texels[texels.size() / 2];

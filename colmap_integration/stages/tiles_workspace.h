@@ -77,7 +77,8 @@ struct TilesSummary {
 };
 
 TilesSummary TilesWorkspace(const TilesOptions& options);
-TilesSummary TilesWorkspace(const TilesOptions& options, const LoadedDive& dive);
+// Releases the dive's mesh (LoadedDive::ReleaseMesh) once it is on disk tile by tile.
+TilesSummary TilesWorkspace(const TilesOptions& options, LoadedDive& dive);
 
 void PrintTilesSummary(std::ostream& out, const TilesSummary& summary);
 

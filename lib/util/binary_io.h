@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace lutex {
 
@@ -51,6 +52,27 @@ template <typename T>
 void WriteBinary(std::ostream& stream, const T& value) {
   static_assert(std::is_trivially_copyable<T>::value, "plain values only");
   stream.write(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+// An array of plain values (Eigen's fixed-size vectors included: their bytes are their coefficients, though
+// Eigen does not declare them trivially copyable),
+// after its count (uint64), in the machine's own byte order: for scratch files read back by the process
+// that wrote them.
+template <typename T>
+void WriteBinaryArray(std::ostream& stream, const std::vector<T>& values) {
+  WriteBinary(stream, static_cast<std::uint64_t>(values.size()));
+  stream.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(T)));
+}
+
+// Reads what WriteBinaryArray wrote into `values`; ThrowTruncated(what) when the stream holds fewer values
+// than its count says (checked before allocating).
+template <typename T>
+void ReadBinaryArray(std::istream& stream, const char* what, std::vector<T>& values) {
+  const auto count = ReadBinary<std::uint64_t>(stream, what);
+  if (count > BytesLeft(stream).value_or(0) / sizeof(T)) ThrowTruncated(what);
+  values.resize(count);
+  stream.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(count * sizeof(T)));
+  if (!stream) ThrowTruncated(what);
 }
 
 }  // namespace lutex

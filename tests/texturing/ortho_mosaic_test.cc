@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/rendered_views.h"
+#include "tests/support/temp_dir.h"
 
 namespace lutex {
 namespace {
@@ -55,7 +56,9 @@ Mosaic MakeMosaic(const Scene& scene, const MapFrame& frame, const OrthoGrid& gr
     tile.colour.copyTo(mosaic.colour(cells));
     tile.height.copyTo(mosaic.height(cells));
   };
-  mosaic.summary = MakeOrthoMosaic(scene.mesh, scene.views, scene.source, frame, grid, options, keep, &tiling);
+  const testing::TempDir scratch;
+  mosaic.summary =
+      MakeOrthoMosaic(scene.mesh, scene.views, scene.source, frame, grid, options, keep, scratch.path() / "mesh", &tiling);
   return mosaic;
 }
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/rendered_views.h"
+#include "tests/support/temp_dir.h"
 #include "texturing/face_adjacency.h"
 #include "texturing/view_selection.h"
 
@@ -58,7 +59,8 @@ TEST(TiledViewChoice, EachTilesPieceFindsTheCandidatesOfTheWholeMesh) {
   const RaycastScene whole_scene(scene.mesh);
   const FaceViewCandidates whole = FindFaceViewCandidates(scene.mesh, adjacency, scene.views,
                                                           ViewRaycaster(whole_scene), scene.source, options.visibility);
-  TiledViewChoice choice(scene.mesh, scene.views, scene.TileList(), options);
+  const testing::TempDir scratch;
+  TiledViewChoice choice(scene.mesh, scene.views, scene.TileList(), options, scratch.path() / "mesh");
   std::size_t compared = 0, differ = 0, differ_alone = 0;
   for (std::size_t t = 0; t < scene.tiles.size(); ++t) {
     const TilePiece piece = choice.Choose(t, scene.source);
@@ -94,7 +96,8 @@ TEST(TiledViewChoice, TilesAgreeWithTheTilesBeforeAtTheirBorders) {
   const Scene scene;
   TextureBakingOptions options;
   options.fusion.blend = TexelBlend::kSingle;  // a step at every seam, for the levelling to remove
-  TiledViewChoice choice(scene.mesh, scene.views, scene.TileList(), options);
+  const testing::TempDir scratch;
+  TiledViewChoice choice(scene.mesh, scene.views, scene.TileList(), options, scratch.path() / "mesh");
   std::vector<std::uint32_t> label(scene.mesh.faces.size(), kChooseView);
   std::map<std::pair<std::uint32_t, std::uint32_t>, Eigen::Vector3f> correction;  // (dive's vertex, view)
   std::size_t fixed_faces = 0, shared_corrections = 0, nonzero_shared = 0;
