@@ -1,8 +1,7 @@
 #pragma once
 
 // Runs a measurement in a child process that does nothing else, so its peak resident set is its own (not
-// that of the simulation or of the measurements before it), under the allocator policy lutex's main sets
-// (lib/util/allocator_policy.h). `Measurement` is trivially copyable (it
+// that of the simulation or of the measurements before it). `Measurement` is trivially copyable (it
 // crosses a pipe) and has a `double peak_mib`, which this fills.
 //
 // The peak of a multi-threaded stage varies from run to run by a tenth or so (which of two threads' large
@@ -19,8 +18,6 @@
 #include <type_traits>
 #include <vector>
 
-#include "lib/util/allocator_policy.h"
-
 namespace lutex::bench {
 
 template <typename Measurement>
@@ -31,7 +28,6 @@ Measurement InChild(const std::function<Measurement()>& work) {
   const pid_t child = fork();
   if (child == 0) {
     close(pipe_ends[0]);
-    MapLargeBlocksFromTheSystem();
     Measurement measurement = work();
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);

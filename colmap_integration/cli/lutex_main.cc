@@ -19,7 +19,6 @@
 #include "colmap_integration/cli/simulate_command.h"
 #include "colmap_integration/cli/texture_command.h"
 #include "colmap_integration/cli/tiles_command.h"
-#include "lib/util/allocator_policy.h"
 
 namespace {
 
@@ -52,7 +51,6 @@ void PrintUsage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  lutex::MapLargeBlocksFromTheSystem();
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0 ||
       std::strcmp(argv[1], "help") == 0) {
     PrintUsage(std::cout);
