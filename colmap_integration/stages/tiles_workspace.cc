@@ -16,7 +16,6 @@
 #include "colmap_integration/stages/workspace_lock.h"
 #include "lib/geo/earth_frame.h"
 #include "lib/geo/map_frame.h"
-#include "lib/util/allocator_policy.h"
 #include "lib/util/atomic_output.h"
 #include "lib/util/logging.h"
 #include "lib/util/option_error.h"
@@ -219,9 +218,6 @@ TilesSummary TilesWorkspace(const TilesOptions& options, LoadedDive& dive) {
   options.Check();
   const InputsAndOutputs paths = PathsOf(options, dive.workspace());
   const std::unique_ptr<ExclusiveFileLock> workspace_lock = ClaimOutputs(dive.workspace(), paths);
-  // Tile after tile frees and allocates the same large buffers: from here on the process maps them from
-  // the system and returns them (allocator_policy.h; 0.8x the peak at 1.1x the time on a 5 M-face dive).
-  MapLargeBlocksFromTheSystem();
   // A leaf's views are chosen on its piece, the leaf and the surface around it within reach of the views
   // that see it (tile_views.h), taken as kPieceLeaves leaves' worth: the pieces held up to 1.8 leaves'
   // worth of faces on the tiles benchmark's survey and 5.8 on the 12 MP one (README, 'Speed and memory').
