@@ -17,6 +17,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgdal-dev libproj-dev gdal-bin
   libmeshoptimizer-dev
+  libgoogle-perftools-dev
   libgtest-dev libgmock-dev
   clang libclang-rt-14-dev
   colmap
