@@ -12,15 +12,18 @@
 # took 40-45 % longer at 12 MP. The output does not depend on the allocator (the tiles compared byte for
 # byte).
 #
-# The sanitizer and fuzzing builds bring their own allocator: there it is always the system's.
+# The sanitizer and fuzzing builds bring their own allocator (AddressSanitizer's): there no other is linked.
 set(LUTEX_MALLOC "tcmalloc" CACHE STRING
   "Allocator of the lutex executable and the benchmarks: tcmalloc (gperftools) or system (glibc)")
 set_property(CACHE LUTEX_MALLOC PROPERTY STRINGS tcmalloc system)
 
 add_library(lutex_malloc INTERFACE)
+if(NOT LUTEX_MALLOC MATCHES "^(tcmalloc|system)$")
+  message(FATAL_ERROR "LUTEX_MALLOC is '${LUTEX_MALLOC}'; it must be tcmalloc or system")
+endif()
 if(LUTEX_FUZZERS OR CMAKE_CXX_FLAGS MATCHES "-fsanitize=")
   if(LUTEX_MALLOC STREQUAL "tcmalloc")
-    message(STATUS "lutex: sanitizers bring their own allocator; the system's malloc is kept")
+    message(STATUS "lutex: the sanitizers bring their own allocator; tcmalloc is not linked")
   endif()
 elseif(LUTEX_MALLOC STREQUAL "tcmalloc")
   find_library(LUTEX_TCMALLOC_LIBRARY tcmalloc_minimal)
@@ -29,6 +32,4 @@ elseif(LUTEX_MALLOC STREQUAL "tcmalloc")
                         "(scripts/install_dependencies.sh does), or configure with -DLUTEX_MALLOC=system for glibc's malloc")
   endif()
   target_link_libraries(lutex_malloc INTERFACE ${LUTEX_TCMALLOC_LIBRARY})
-elseif(NOT LUTEX_MALLOC STREQUAL "system")
-  message(FATAL_ERROR "LUTEX_MALLOC is '${LUTEX_MALLOC}'; it must be tcmalloc or system")
 endif()

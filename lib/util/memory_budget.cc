@@ -4,6 +4,9 @@
 #include <fstream>
 #include <stdexcept>
 
+// gperftools' C entry point (gperftools/malloc_extension_c.h); null unless tcmalloc is linked.
+extern "C" int MallocExtension_GetNumericProperty(const char* property, std::size_t* value) __attribute__((weak));
+
 namespace lutex {
 
 std::size_t AvailableMemoryBytes() {
@@ -12,9 +15,15 @@ std::size_t AvailableMemoryBytes() {
   std::size_t kib = 0;
   std::string unit;
   while (meminfo >> key >> kib >> unit) {
-    if (key == "MemAvailable:") return kib * 1024;
+    if (key == "MemAvailable:") return kib * 1024 + AllocatorFreeBytes();
   }
   return 0;
+}
+
+std::size_t AllocatorFreeBytes() {
+  std::size_t bytes = 0;
+  if (MallocExtension_GetNumericProperty == nullptr) return 0;
+  return MallocExtension_GetNumericProperty("tcmalloc.pageheap_free_bytes", &bytes) ? bytes : 0;
 }
 
 std::size_t ResolveMemoryLimit(std::size_t limit_bytes) {

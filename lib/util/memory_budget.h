@@ -14,8 +14,14 @@
 
 namespace lutex {
 
-// MemAvailable of /proc/meminfo: what the machine can give without swapping; 0 when unknown.
+// What this process can have without swapping: MemAvailable of /proc/meminfo plus AllocatorFreeBytes()
+// (what an earlier stage freed and the allocator keeps for this process); 0 when MemAvailable is unknown.
 std::size_t AvailableMemoryBytes();
+
+// The free memory this process's allocator holds mapped, to hand out again: tcmalloc's page heap's free
+// bytes (`lutex` is linked with tcmalloc: cmake/allocator.cmake), looked up through a weak symbol so the
+// libraries do not depend on it; 0 under glibc's malloc, which returns large blocks to the system.
+std::size_t AllocatorFreeBytes();
 
 // The limit a stage is held to: `limit_bytes`, or when it is 0, the machine's available memory (0 when
 // neither is known: no limit).
