@@ -6,6 +6,10 @@
 // split into its four quadrants while it holds more than `max_faces` faces and is above `max_depth`;
 // a face belongs to the leaf under its centroid. Empty quadrants are not kept. The tree is the same for
 // any thread count and any face order of equal geometry.
+//
+// Made in passes over the faces that count them in the squares a few levels below each tile still to be
+// split (at most 4 MiB of counters; deeper trees take more passes), then one that fills the leaves' lists:
+// memory is those lists (4 bytes a face), not the faces' order or centroids.
 
 #include <cstdint>
 #include <string>

@@ -20,18 +20,22 @@
 namespace lutex {
 namespace {
 
+void Append(const Mesh& more, Mesh* mesh) {
+  const auto offset = static_cast<std::uint32_t>(mesh->vertices.size());
+  mesh->vertices.insert(mesh->vertices.end(), more.vertices.begin(), more.vertices.end());
+  for (Mesh::Face face : more.faces) {
+    for (std::uint32_t& v : face) v += offset;
+    mesh->faces.push_back(face);
+  }
+}
+
 // A rolling floor of 2 × 61 × 37 faces, twice as dense in its western half so that the tree is uneven.
 Mesh Floor() {
   Mesh west = MakeHeightFieldMesh([](double x, double y) { return 0.3 * std::sin(x) * std::cos(y); }, 0.0, 3.0, 0.0,
                                   3.7, 40, 37);
   const Mesh east = MakeHeightFieldMesh([](double x, double y) { return 0.3 * std::sin(x) * std::cos(y); }, 3.0, 6.1,
                                         0.0, 3.7, 21, 37);
-  const auto offset = static_cast<std::uint32_t>(west.vertices.size());
-  west.vertices.insert(west.vertices.end(), east.vertices.begin(), east.vertices.end());
-  for (Mesh::Face face : east.faces) {
-    for (std::uint32_t& v : face) v += offset;
-    west.faces.push_back(face);
-  }
+  Append(east, &west);
   return west;
 }
 
@@ -136,6 +140,46 @@ TEST(TileTree, FacesInAnotherOrderMakeTheSameTree) {
     std::sort(faces.begin(), faces.end());
     EXPECT_EQ(faces, node.faces) << node.name;
   }
+}
+
+// A patch of 4,440 faces in a square centimetre of a floor a kilometre wide: the patch's tiles lie 17 to
+// 20 levels down, deeper than one pass over the faces looks ahead, so the tree is made over several passes.
+TEST(TileTree, ADensePatchOnAWideFloorIsSplitAsDeepAsItNeeds) {
+  Mesh mesh = MakeHeightFieldMesh([](double, double) { return 0.0; }, 0.0, 1000.0, 0.0, 1000.0, 4, 4);
+  const Mesh patch = MakeHeightFieldMesh([](double x, double y) { return 0.001 * std::sin(1000.0 * (x + y)); }, 500.0,
+                                         500.01, 300.0, 300.01, 60, 37);
+  Append(patch, &mesh);
+  TileTreeOptions options;
+  options.max_faces = 100;
+  options.max_depth = 24;
+  const TileTree tree = PartitionIntoTiles(mesh, TilesFromModel(), options);
+
+  // Each tile's faces, summed up from its leaves (children come after their parent).
+  std::vector<std::size_t> faces_in(tree.nodes.size(), 0);
+  for (std::size_t n = tree.nodes.size(); n-- > 0;) {
+    faces_in[n] = tree.nodes[n].faces.size();
+    for (std::size_t child : tree.nodes[n].children) faces_in[n] += faces_in[child];
+  }
+  EXPECT_EQ(faces_in[0], mesh.faces.size());
+  int deepest = 0;
+  std::vector<int> leaves_of_face(mesh.faces.size(), 0);
+  for (std::size_t n = 0; n < tree.nodes.size(); ++n) {
+    const TileNode& node = tree.nodes[n];
+    deepest = std::max(deepest, node.depth);
+    if (!node.children.empty()) {
+      EXPECT_GT(faces_in[n], options.max_faces) << "split although it fits: " << node.name;
+      continue;
+    }
+    EXPECT_LE(node.faces.size(), options.max_faces) << node.name;
+    for (std::uint32_t f : node.faces) {
+      ++leaves_of_face[f];
+      EXPECT_TRUE(Holds(node, CentroidInTiles(mesh, f))) << "face " << f << " outside " << node.name;
+    }
+  }
+  EXPECT_EQ(std::count(leaves_of_face.begin(), leaves_of_face.end(), 1),
+            static_cast<std::ptrdiff_t>(mesh.faces.size()))
+      << "every face in one leaf";
+  EXPECT_GE(deepest, 17);
 }
 
 TEST(TileTree, RefusesAMeshWithoutFacesAndBadOptions) {
