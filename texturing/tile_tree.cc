@@ -92,7 +92,7 @@ TileTree PartitionIntoTiles(const Mesh& mesh, const Eigen::Matrix3d& tiles_from_
   if (needs_split(squares[0])) waiting.push_back(0);
   while (!waiting.empty()) {
     int ahead = 1;  // levels counted below each waiting square
-    while (ahead < options.max_depth && waiting.size() << (2 * (ahead + 1)) <= kMaxCounters) ++ahead;
+    while (waiting.size() << (2 * (ahead + 1)) <= kMaxCounters) ++ahead;
     std::vector<int> slot(squares.size(), -1);  // of each waiting square's counters
     std::vector<int> levels(waiting.size());
     std::vector<std::size_t> first(waiting.size() + 1, 0);
@@ -104,7 +104,7 @@ TileTree PartitionIntoTiles(const Mesh& mesh, const Eigen::Matrix3d& tiles_from_
     std::vector<std::uint32_t> counts(first.back(), 0);
     for_each_centroid([&](std::uint32_t, const Eigen::Vector2d& centroid) {
       const int s = square_of(centroid);
-      if (s < 0 || slot[s] < 0) return;
+      if (slot[s] < 0) return;
       const int w = slot[s];
       Eigen::AlignedBox2d footprint = squares[s].footprint;
       std::size_t cell = 0;
