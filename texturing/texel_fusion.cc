@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "lib/geometry/spatial_batches.h"
+#include "lib/util/chunked_array.h"
 #include "lib/util/parallel_for.h"
 #include "lib/util/progress.h"
 #include "texturing/view_pixel_depths.h"
@@ -183,7 +184,7 @@ std::vector<cv::Point> SampledPixels(const Mesh& mesh, const TextureView& view, 
 // trusted) are the pixels of `window`; `depths` must have the pixels the texels' footprints read.
 void SampleView(const Mesh& mesh, const TextureView& view, std::uint32_t view_index, const ViewPixelDepths& depths,
                 const cv::Rect& window, const cv::Mat& colour, const cv::Mat& confidence, const std::vector<PassFace>& faces,
-                const TexelLayout& layout, std::vector<TexelSamples>& samples, std::vector<std::mutex>& locks) {
+                const TexelLayout& layout, ChunkedArray<TexelSamples>& samples, std::vector<std::mutex>& locks) {
   const double focal = 0.5 * (view.camera.FocalLengthX() + view.camera.FocalLengthY());
   const double depth_tolerance = 0.01 + 2.0 / focal;  // relative: 1 % plus two pixels' slope at 45 degrees
   const Eigen::Vector3d centre_in_world = view.cam_from_world.TargetOriginInSource();
@@ -341,7 +342,7 @@ TexelFusionSummary FuseTexels(const Mesh& mesh, const std::vector<TextureView>& 
     if (source.is_held) {
       std::stable_partition(used_views.begin(), used_views.end(), [&](std::size_t v) { return source.is_held(v); });
     }
-    std::vector<TexelSamples> samples(num_samples);
+    ChunkedArray<TexelSamples> samples(num_samples);
     std::atomic<std::size_t> views_outside{0};  // whose faces all project outside the image: not read
     std::atomic<std::size_t> views_cast_by_pixel{0};
     std::optional<ProgressReporter> progress;

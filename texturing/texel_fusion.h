@@ -20,7 +20,9 @@
 // passes over the views as `memory_limit_bytes` needs. Each pass takes neighbouring charts (one part of
 // the surface), reads only the views that see them and ray casts only the rectangle of each view their
 // faces project to, or, where its texels are few in that rectangle (seam points scattered over a whole
-// view), only the pixels they read (view_pixel_depths.h). Results do not depend on the passes.
+// view), only the pixels they read (view_pixel_depths.h). Results do not depend on the passes. A pass's
+// samples are held in blocks of 1 MiB (lib/util/chunked_array.h), not one block of tens of MB, so that a
+// tiled bake, which fuses tile after tile, finds room for them in what earlier tiles freed.
 
 #include <cstdint>
 #include <string>
