@@ -27,7 +27,7 @@ TiledViewChoice::TiledViewChoice(const Mesh& mesh, const std::vector<TextureView
                                  const TextureBakingOptions& options, const std::filesystem::path& scratch,
                                  const std::vector<Eigen::AlignedBox3d>& spans)
     : views_(views), options_(options), strides_(CastEveryView(mesh, views, options.visibility.rays_per_face)),
-      mesh_file_(mesh, tiles, scratch), view_of_face_(mesh.faces.size(), kChooseView) {
+      mesh_file_(mesh, tiles, scratch, kChooseView) {
   options_.Check();
   if (!spans.empty() && spans.size() != tiles.size()) throw std::invalid_argument("tiled views: one span per tile");
   for (std::size_t t = 0; t < tiles.size(); ++t) {
@@ -114,11 +114,10 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
   part.given.resize(piece_faces.size());
   std::vector<bool> here(piece_faces.size(), false);
   for (std::size_t i = 0; i < piece_faces.size(); ++i) {
-    const std::uint32_t f = piece_faces[i];
-    const bool chosen_before = view_of_face_[f] != kChooseView;
+    const bool chosen_before = read.label[i] != kChooseView;
     here[i] = !chosen_before && (shown[i] || read.tile[i] == tile);
     if (here[i]) tile_faces.push_back(static_cast<std::uint32_t>(i));
-    part.given[i] = here[i] ? kChooseView : chosen_before ? view_of_face_[f] : kNoView;
+    part.given[i] = here[i] ? kChooseView : chosen_before ? read.label[i] : kNoView;
     shown[i] = shown[i] && !here[i];
   }
   if (use) part.shown = std::move(shown);
@@ -133,8 +132,15 @@ TilePiece TiledViewChoice::Choose(std::size_t tile, const ViewImageSource& sourc
 
   // What the tiles after this one need: its labels, and its corrections where its faces meet others and
   // at every corner of the faces a later tile may show.
-  const std::vector<std::uint32_t>& labels = chosen.selection.view_of_face;
-  for (std::uint32_t i : tile_faces) view_of_face_[piece_faces[i]] = labels[i];
+  {
+    std::vector<std::uint32_t> faces, tiles, labels;
+    for (std::uint32_t i : tile_faces) {
+      faces.push_back(piece_faces[i]);
+      tiles.push_back(read.tile[i]);
+      labels.push_back(chosen.selection.view_of_face[i]);
+    }
+    mesh_file_.SetLabels(faces, tiles, labels);
+  }
   std::vector<std::uint8_t> used_by(piece.mesh.vertices.size(), 0);  // 1: a face here, 2: another, 3: both
   for (std::size_t i = 0; i < piece_faces.size(); ++i) {
     for (std::uint32_t v : piece.mesh.faces[i]) used_by[v] = static_cast<std::uint8_t>(used_by[v] | (here[i] ? 1 : 2));

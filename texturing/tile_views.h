@@ -16,10 +16,11 @@
 //   3. the seam levelling of the tile's faces, with the corrections the tiles before settled held at the
 //      vertices they share (seam_levelling.h SeamLevellingPart): a border shows one correction from both
 //      sides.
-// Kept for the whole dive between tiles: each face's label (4 bytes), the corrections at the vertices of
-// tile borders, and the mesh on disk tile by tile (tiled_mesh_file.h), from which each piece is read: the
-// mesh and the tiles' face lists the choice is made from may be freed once it is constructed. The rest (the piece, its scene, adjacency and candidates) lives as long as the tile's
-// bake, which BakeFaces does with the piece's choice.
+// Kept for the whole dive between tiles: the corrections at the vertices of tile borders in memory, and on
+// disk the mesh tile by tile with each face's label (tiled_mesh_file.h), from which each piece is read
+// with the labels of the faces chosen before: the mesh and the tiles' face lists the choice is made from
+// may be freed once it is constructed. The rest (the piece, its scene, adjacency and candidates) lives as
+// long as the tile's bake, which BakeFaces does with the piece's choice.
 //
 // Tiles are chosen in the order they are asked for, and the result depends on that order (the later of
 // two neighbours adapts to the earlier), not on the thread count.
@@ -94,13 +95,12 @@ class TiledViewChoice {
   const std::vector<TextureView>& views_;
   TextureBakingOptions options_;
   VisibilityCasts strides_;                     // every view's stride on the whole mesh
-  TiledMeshFile mesh_file_;
+  TiledMeshFile mesh_file_;                     // each face labelled kChooseView until its tile is chosen
   std::shared_ptr<ViewRayTables> rays_ = std::make_shared<ViewRayTables>();  // shared by the pieces
   std::vector<Eigen::AlignedBox3d> tile_boxes_;  // of each tile's faces and span
   double longest_edge_ = 0.0;
   // Per view, the image's extent in normalised camera coordinates (x / z, y / z): min x, max x, min y, max y.
   std::vector<Eigen::Vector4d> view_extent_;
-  std::vector<std::uint32_t> view_of_face_;     // kChooseView until its tile is chosen
   // Corrections at tile borders: (dive's vertex << 32 | view) -> correction.
   std::unordered_map<std::uint64_t, Eigen::Vector3f> settled_;
   SeamLevellingSummary levelling_;

@@ -4,6 +4,7 @@
 #include <array>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "lib/util/binary_io.h"
@@ -17,7 +18,7 @@ constexpr std::uint32_t kNotInTile = 0xffffffffu;
 }  // namespace
 
 TiledMeshFile::TiledMeshFile(const Mesh& mesh, const std::vector<const std::vector<std::uint32_t>*>& tiles,
-                             const std::filesystem::path& scratch)
+                             const std::filesystem::path& scratch, std::uint32_t unset_label)
     : file_(scratch) {
   std::ofstream out(file_.temporary_path(), std::ios::binary | std::ios::trunc);
   if (!out) throw std::runtime_error(file_.temporary_path().string() + ": cannot write the mesh's scratch file");
@@ -26,6 +27,7 @@ TiledMeshFile::TiledMeshFile(const Mesh& mesh, const std::vector<const std::vect
   std::vector<std::uint32_t> vertices;
   std::vector<Eigen::Vector3d> positions;
   std::vector<Mesh::Face> corners;
+  std::vector<std::uint32_t> labels;
   std::uint64_t offset = 0;
   for (const std::vector<std::uint32_t>* faces : tiles) {
     vertices.clear();
@@ -58,8 +60,12 @@ TiledMeshFile::TiledMeshFile(const Mesh& mesh, const std::vector<const std::vect
     WriteBinaryArray(out, vertices);
     WriteBinaryArray(out, positions);
     WriteBinaryArray(out, corners);
+    labels.assign(faces->size(), unset_label);
+    WriteBinaryArray(out, labels);
     offset += 4 * sizeof(std::uint64_t) + faces->size() * (sizeof(std::uint32_t) + sizeof(Mesh::Face)) +
               vertices.size() * (sizeof(std::uint32_t) + sizeof(Eigen::Vector3d));
+    label_offsets_.push_back(offset);
+    offset += sizeof(std::uint64_t) + labels.size() * sizeof(std::uint32_t);
   }
   if (num_faces_ != mesh.faces.size()) {
     throw std::invalid_argument("tiled mesh: the tiles must hold each face of the mesh once");
@@ -78,6 +84,7 @@ TiledMeshFile::Piece TiledMeshFile::Read(
   struct KeptFace {
     std::uint32_t mesh_face;
     std::uint32_t tile;
+    std::uint32_t label;
     std::array<std::uint32_t, 3> mesh_vertices;
   };
   std::vector<KeptFace> kept;
@@ -85,6 +92,7 @@ TiledMeshFile::Piece TiledMeshFile::Read(
   std::vector<std::uint32_t> faces, vertices;
   std::vector<Eigen::Vector3d> positions;
   std::vector<Mesh::Face> corners;
+  std::vector<std::uint32_t> labels;
   std::vector<bool> used;
   try {
     for (std::size_t t : tiles) {
@@ -93,7 +101,8 @@ TiledMeshFile::Piece TiledMeshFile::Read(
       ReadBinaryArray(in, "a tile's vertices", vertices);
       ReadBinaryArray(in, "a tile's positions", positions);
       ReadBinaryArray(in, "a tile's corners", corners);
-      if (positions.size() != vertices.size() || corners.size() != faces.size()) {
+      ReadBinaryArray(in, "a tile's labels", labels);
+      if (positions.size() != vertices.size() || corners.size() != faces.size() || labels.size() != faces.size()) {
         throw std::runtime_error("a tile's record does not add up");
       }
       used.assign(vertices.size(), false);
@@ -102,7 +111,8 @@ TiledMeshFile::Piece TiledMeshFile::Read(
         for (std::uint32_t v : corners[i]) face_box.extend(positions.at(v));
         if (!keep(t, face_box)) continue;
         const Mesh::Face& c = corners[i];
-        kept.push_back({faces[i], static_cast<std::uint32_t>(t), {vertices[c[0]], vertices[c[1]], vertices[c[2]]}});
+        kept.push_back(
+            {faces[i], static_cast<std::uint32_t>(t), labels[i], {vertices[c[0]], vertices[c[1]], vertices[c[2]]}});
         for (std::uint32_t v : c) used[v] = true;
       }
       for (std::size_t v = 0; v < vertices.size(); ++v) {
@@ -134,13 +144,63 @@ TiledMeshFile::Piece TiledMeshFile::Read(
   tile_mesh.mesh.faces.reserve(kept.size());
   piece.mesh_face.reserve(kept.size());
   piece.tile.reserve(kept.size());
+  piece.label.reserve(kept.size());
   for (const KeptFace& face : kept) {
     tile_mesh.mesh.faces.push_back(
         {index_of(face.mesh_vertices[0]), index_of(face.mesh_vertices[1]), index_of(face.mesh_vertices[2])});
     piece.mesh_face.push_back(face.mesh_face);
     piece.tile.push_back(face.tile);
+    piece.label.push_back(face.label);
   }
   return piece;
+}
+
+void TiledMeshFile::SetLabels(const std::vector<std::uint32_t>& mesh_faces, const std::vector<std::uint32_t>& tiles,
+                              const std::vector<std::uint32_t>& labels) {
+  if (tiles.size() != mesh_faces.size() || labels.size() != mesh_faces.size()) {
+    throw std::invalid_argument("tiled mesh: one tile and one label per face to label");
+  }
+  std::vector<std::size_t> order(mesh_faces.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (tiles[i] >= num_tiles()) throw std::invalid_argument("tiled mesh: a face to label is in no tile");
+    order[i] = i;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return tiles[a] < tiles[b]; });
+  const std::string& name = file_.temporary_path().string();
+  std::fstream file(file_.temporary_path(), std::ios::binary | std::ios::in | std::ios::out);
+  if (!file) throw std::runtime_error(name + ": cannot open the mesh's scratch file to label its faces");
+  std::vector<std::uint32_t> faces, tile_labels;
+  for (std::size_t begin = 0; begin < order.size();) {
+    const std::uint32_t t = tiles[order[begin]];
+    std::size_t end = begin;
+    while (end < order.size() && tiles[order[end]] == t) ++end;
+    try {
+      file.seekg(static_cast<std::streamoff>(offsets_[t]));
+      ReadBinaryArray(file, "a tile's faces", faces);
+      file.seekg(static_cast<std::streamoff>(label_offsets_[t]));
+      ReadBinaryArray(file, "a tile's labels", tile_labels);
+    } catch (const std::runtime_error& error) {
+      throw std::runtime_error(name + ": " + error.what() + " (the mesh's scratch file)");
+    }
+    if (tile_labels.size() != faces.size()) throw std::runtime_error(name + ": a tile's record does not add up");
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t face = mesh_faces[order[k]];
+      const auto found = std::lower_bound(faces.begin(), faces.end(), face);
+      if (found == faces.end() || *found != face) {
+        throw std::invalid_argument("tiled mesh: face " + std::to_string(face) + " is not in tile " +
+                                    std::to_string(t));
+      }
+      tile_labels[static_cast<std::size_t>(found - faces.begin())] = labels[order[k]];
+    }
+    file.seekp(static_cast<std::streamoff>(label_offsets_[t] + sizeof(std::uint64_t)));
+    file.write(reinterpret_cast<const char*>(tile_labels.data()),
+               static_cast<std::streamsize>(tile_labels.size() * sizeof(std::uint32_t)));
+    begin = end;
+  }
+  file.flush();
+  if (!file) {
+    throw std::runtime_error(name + ": could not label the faces in the mesh's scratch file (is the disk full?)");
+  }
 }
 
 }  // namespace lutex

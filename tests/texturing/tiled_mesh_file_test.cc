@@ -1,5 +1,6 @@
 // The mesh on disk tile by tile (texturing/tiled_mesh_file.h): any set of tiles reads back as the piece
-// ExtractTileMesh cuts from the mesh itself, at coordinates of a UTM-sized survey, bit for bit.
+// ExtractTileMesh cuts from the mesh itself, at coordinates of a UTM-sized survey, bit for bit, with the
+// labels written to its faces since.
 
 #include "texturing/tiled_mesh_file.h"
 
@@ -83,6 +84,54 @@ TEST(TiledMeshFile, ReadsBackThePieceCutFromTheMesh) {
   const TiledMeshFile::Piece none = file.Read({1, 2}, [](std::size_t, const Eigen::AlignedBox3d&) { return false; });
   EXPECT_TRUE(none.mesh_face.empty());
   EXPECT_TRUE(none.tile_mesh.mesh.vertices.empty());
+}
+
+TEST(TiledMeshFile, KeepsEachFacesLabelOnDiskUntilItIsRewritten) {
+  const Scene scene;
+  const testing::TempDir dir;
+  constexpr std::uint32_t kUnset = 77;
+  TiledMeshFile file(scene.mesh, scene.TileList(), dir.path() / "mesh", kUnset);
+  std::vector<std::uint32_t> tile_of_face(scene.mesh.faces.size());
+  for (std::uint32_t t = 0; t < scene.tiles.size(); ++t) {
+    for (std::uint32_t f : scene.tiles[t]) tile_of_face[f] = t;
+  }
+  // Every third face of the mesh labelled, across all tiles and in descending order; then some of them again.
+  std::vector<std::uint32_t> expected(scene.mesh.faces.size(), kUnset);
+  const auto label = [&](const std::vector<std::uint32_t>& faces, std::uint32_t base) {
+    std::vector<std::uint32_t> tiles, labels;
+    for (std::uint32_t f : faces) {
+      tiles.push_back(tile_of_face[f]);
+      labels.push_back(base + f);
+      expected[f] = base + f;
+    }
+    file.SetLabels(faces, tiles, labels);
+  };
+  std::vector<std::uint32_t> every_third, every_ninth;
+  for (std::uint32_t f = static_cast<std::uint32_t>(scene.mesh.faces.size()); f-- > 0;) {
+    if (f % 3 == 0) every_third.push_back(f);
+    if (f % 9 == 0) every_ninth.push_back(f);
+  }
+  label(every_third, 1000);
+  label(every_ninth, 5000);
+  const TiledMeshFile::Piece piece =
+      file.Read({4, 2, 0, 1, 3}, [](std::size_t, const Eigen::AlignedBox3d&) { return true; });
+  ASSERT_EQ(piece.label.size(), scene.mesh.faces.size());
+  for (std::size_t i = 0; i < piece.label.size(); ++i) {
+    ASSERT_EQ(piece.label[i], expected[piece.mesh_face[i]]) << "face " << piece.mesh_face[i];
+  }
+  // The rest of the file is untouched: the piece is still the one cut from the mesh.
+  std::vector<std::uint32_t> all(scene.mesh.faces.size());
+  for (std::uint32_t f = 0; f < all.size(); ++f) all[f] = f;
+  EXPECT_EQ(piece.tile_mesh.mesh.faces, ExtractTileMesh(scene.mesh, all).mesh.faces);
+
+  const std::uint32_t face = scene.tiles[1].front();
+  file.SetLabels({face, scene.tiles[0].front(), face}, {1, 0, 1}, {3, 4, 5});
+  const TiledMeshFile::Piece tile_1 = file.Read({1}, [](std::size_t, const Eigen::AlignedBox3d&) { return true; });
+  ASSERT_EQ(tile_1.mesh_face.front(), face);
+  EXPECT_EQ(tile_1.label.front(), 5u) << "a face given twice gets the later label";
+  EXPECT_THROW(file.SetLabels({face}, {2}, {9}), std::invalid_argument) << "not in that tile";
+  EXPECT_THROW(file.SetLabels({face}, {5}, {9}), std::invalid_argument) << "no such tile";
+  EXPECT_THROW(file.SetLabels({face}, {1}, {}), std::invalid_argument) << "no label";
 }
 
 TEST(TiledMeshFile, IsScratchUnderATemporaryNameRemovedWithIt) {
