@@ -78,7 +78,8 @@ class TiledViewChoice {
 
   // Chooses the views of tile `tile` (each tile once), and of the faces `use` shows that no tile chose
   // before. With no face within the tile's reach, the piece is empty and has no scene. Throws what the
-  // image source and `use` throw.
+  // image source and `use` throw, and std::runtime_error naming the mesh's scratch file when it cannot be
+  // read or written.
   TilePiece Choose(std::size_t tile, const ViewImageSource& source, const TileUse* use = nullptr);
 
   // Over the tiles chosen so far: the seam levelling (points, corrections and steps summed or averaged

@@ -31,6 +31,9 @@ TiledMeshFile::TiledMeshFile(const Mesh& mesh, const std::vector<const std::vect
   std::uint64_t offset = 0;
   for (const std::vector<std::uint32_t>* faces : tiles) {
     vertices.clear();
+    if (!std::is_sorted(faces->begin(), faces->end())) {
+      throw std::invalid_argument("tiled mesh: each tile's faces must be in ascending order");
+    }
     for (std::uint32_t f : *faces) {
       if (f >= mesh.faces.size() || seen[f]) {
         throw std::invalid_argument("tiled mesh: the tiles must hold each face of the mesh once");
@@ -195,6 +198,9 @@ void TiledMeshFile::SetLabels(const std::vector<std::uint32_t>& mesh_faces, cons
     file.seekp(static_cast<std::streamoff>(label_offsets_[t] + sizeof(std::uint64_t)));
     file.write(reinterpret_cast<const char*>(tile_labels.data()),
                static_cast<std::streamsize>(tile_labels.size() * sizeof(std::uint32_t)));
+    if (!file) {
+      throw std::runtime_error(name + ": could not label the faces in the mesh's scratch file (is the disk full?)");
+    }
     begin = end;
   }
   file.flush();

@@ -36,9 +36,9 @@ namespace lutex {
 class TiledMeshFile {
  public:
   // Writes `mesh` tile by tile (`tiles`: each tile's faces, ascending) beside `scratch` under a temporary
-  // name, every face labelled `unset_label`. Throws std::invalid_argument when a tile's face is not in the
-  // mesh or the tiles do not hold each face once, std::runtime_error naming the file when it cannot be
-  // written.
+  // name, every face labelled `unset_label`. Throws std::invalid_argument when a tile's faces are not
+  // ascending, a tile's face is not in the mesh or the tiles do not hold each face once, std::runtime_error
+  // naming the file when it cannot be written.
   TiledMeshFile(const Mesh& mesh, const std::vector<const std::vector<std::uint32_t>*>& tiles,
                 const std::filesystem::path& scratch, std::uint32_t unset_label = 0xffffffffu);
   TiledMeshFile(const TiledMeshFile&) = delete;

@@ -26,8 +26,8 @@ int RunTilesCommand(int argc, char** argv) {
       "at twice their texel size, with a geometric error in metres that tells the viewer when to refine.\n"
       "The georeference (options or W/georef.json) gives the root transform that puts the tiles on the\n"
       "globe; without one the tiles stay in the model's frame and a warning says so. Memory: one leaf and\n"
-      "the surface around it at a time, plus the view chosen for every face; once the tree is made, the\n"
-      "mesh waits on disk in the output's temporary folder (about 30 bytes a face) and is read a piece at\n"
+      "the surface around it at a time; once the tree is made, the mesh waits on disk in the output's\n"
+      "temporary folder with the view chosen for each face (about 34 bytes a face) and is read a piece at\n"
       "a time.");
   AddDiveOptions(parser, &options.workspace, &options.mesh);
   parser.AddPath("images", &options.views.images, "Images to texture from (default W/lutex/restored, else W/images).");

@@ -131,8 +131,8 @@ MosaicSummary MosaicWorkspace(const MosaicOptions& options, LoadedDive& dive) {
   // views that see it (ortho_mosaic.h), taken as kPieceBlocks blocks' worth of the fullest block.
   const std::size_t piece_faces = std::min(dive.mesh().faces.size(), kPieceBlocks * tiling.MostFaces());
   MemoryEstimate baking_memory = TextureBakingMemory(options.ortho.baking, piece_faces);
-  baking_memory.Add("the tile and label of every face", static_cast<double>(dive.mesh().faces.size()),
-                    2 * sizeof(std::uint32_t));
+  baking_memory.Add("the block of every face", static_cast<double>(dive.mesh().faces.size()),
+                    sizeof(std::uint32_t));
   baking_memory.Add("the decoded-picture cache", 1.0,
                     PictureCacheBytes(dive.model(), options.views.image_encoding, options.picture_cache_bytes));
   baking_memory.Add("GDAL's block cache", 1.0, static_cast<double>(options.gdal_cache_bytes));

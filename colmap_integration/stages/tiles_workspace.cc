@@ -223,7 +223,6 @@ TilesSummary TilesWorkspace(const TilesOptions& options, LoadedDive& dive) {
   // worth of faces on the tiles benchmark's survey and 5.8 on the 12 MP one (README, 'Speed and memory').
   const std::size_t piece_faces = std::min(dive.mesh().faces.size(), kPieceLeaves * options.tree.max_faces);
   MemoryEstimate baking_memory = TextureBakingMemory(options.baking, piece_faces);
-  baking_memory.Add("the label of every face", static_cast<double>(dive.mesh().faces.size()), sizeof(std::uint32_t));
   baking_memory.Add("the decoded-picture cache", 1.0,
                     PictureCacheBytes(dive.model(), options.views.image_encoding, options.picture_cache_bytes));
   CheckStageMemory("tiles", dive, options.baking.num_threads, kImageStageBytesPerPixel, options.memory_limit_bytes,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <utility>
 #include <stdexcept>
 #include <vector>
 
@@ -46,7 +47,7 @@ Eigen::AlignedBox3d FaceBox(const Mesh& mesh, std::uint32_t face) {
 TEST(TiledMeshFile, ReadsBackThePieceCutFromTheMesh) {
   const Scene scene;
   const testing::TempDir dir;
-  const TiledMeshFile file(scene.mesh, scene.TileList(), dir.path() / "mesh");
+  const TiledMeshFile file(scene.mesh, scene.TileList(), dir.path() / "mesh");  // labels unset: all ones
   ASSERT_EQ(file.num_tiles(), 5u);
   EXPECT_EQ(file.num_faces(), scene.mesh.faces.size());
   for (std::size_t t = 0; t < scene.tiles.size(); ++t) {
@@ -79,6 +80,7 @@ TEST(TiledMeshFile, ReadsBackThePieceCutFromTheMesh) {
   }
   ASSERT_EQ(piece.tile.size(), faces.size());
   for (std::size_t i = 0; i < faces.size(); ++i) EXPECT_EQ(piece.tile[i], tile_of_face[faces[i]]);
+  EXPECT_EQ(piece.label, std::vector<std::uint32_t>(faces.size(), 0xffffffffu));
 
   // Nothing kept, nothing read.
   const TiledMeshFile::Piece none = file.Read({1, 2}, [](std::size_t, const Eigen::AlignedBox3d&) { return false; });
@@ -119,10 +121,13 @@ TEST(TiledMeshFile, KeepsEachFacesLabelOnDiskUntilItIsRewritten) {
   for (std::size_t i = 0; i < piece.label.size(); ++i) {
     ASSERT_EQ(piece.label[i], expected[piece.mesh_face[i]]) << "face " << piece.mesh_face[i];
   }
-  // The rest of the file is untouched: the piece is still the one cut from the mesh.
+  // The rest of the file is untouched: the piece is still the one cut from the mesh, bit for bit.
   std::vector<std::uint32_t> all(scene.mesh.faces.size());
   for (std::uint32_t f = 0; f < all.size(); ++f) all[f] = f;
-  EXPECT_EQ(piece.tile_mesh.mesh.faces, ExtractTileMesh(scene.mesh, all).mesh.faces);
+  const TileMesh whole = ExtractTileMesh(scene.mesh, all);
+  EXPECT_EQ(piece.tile_mesh.mesh.faces, whole.mesh.faces);
+  EXPECT_EQ(piece.tile_mesh.source_vertex, whole.source_vertex);
+  EXPECT_TRUE(piece.tile_mesh.mesh.vertices == whole.mesh.vertices);
 
   const std::uint32_t face = scene.tiles[1].front();
   file.SetLabels({face, scene.tiles[0].front(), face}, {1, 0, 1}, {3, 4, 5});
@@ -150,7 +155,7 @@ TEST(TiledMeshFile, IsScratchUnderATemporaryNameRemovedWithIt) {
   EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << "removed when the file is destroyed";
 }
 
-TEST(TiledMeshFile, RefusesTilesThatDoNotHoldEachFaceOnce) {
+TEST(TiledMeshFile, RefusesTilesThatDoNotHoldEachFaceOnceInAscendingOrder) {
   Scene scene;
   const testing::TempDir dir;
   scene.tiles[1].push_back(scene.tiles[0].front());  // twice
@@ -162,6 +167,9 @@ TEST(TiledMeshFile, RefusesTilesThatDoNotHoldEachFaceOnce) {
   Scene beyond;
   beyond.tiles[3].push_back(static_cast<std::uint32_t>(beyond.mesh.faces.size()));
   EXPECT_THROW(TiledMeshFile(beyond.mesh, beyond.TileList(), dir.path() / "beyond"), std::invalid_argument);
+  Scene unsorted;
+  std::swap(unsorted.tiles[4][0], unsorted.tiles[4][1]);
+  EXPECT_THROW(TiledMeshFile(unsorted.mesh, unsorted.TileList(), dir.path() / "unsorted"), std::invalid_argument);
   EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << "a refused file leaves nothing";
 }
 
